@@ -17,7 +17,7 @@ build=${OCTOMOTION_BUILD_DIR:-$root/build}
 
 packages=(build-essential cmake ninja-build pkg-config clang-format
   libeigen3-dev libompl-dev libfcl-dev liburdfdom-dev libassimp-dev liboctomap-dev
-  libyaml-cpp-dev libgtest-dev libgmock-dev libbenchmark-dev)
+  libyaml-cpp-dev libnanoflann-dev libgtest-dev libgmock-dev libbenchmark-dev)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "ok installed" || missing+=("$p")
