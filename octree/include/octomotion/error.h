@@ -2,6 +2,7 @@
 // is an octomotion::Error whose message names the file or field and what is wrong.
 #pragma once
 
+#include <functional>
 #include <stdexcept>
 #include <string>
 
@@ -23,5 +24,10 @@ class FileError : public Error {
  public:
   FileError(const std::string& path, const std::string& what) : Error(path + ": " + what) {}
 };
+
+// Where non-fatal warnings go (e.g. "mesh is open: voxelized as a surface shell"). An empty sink
+// means the default: one line on stderr.
+using WarningSink = std::function<void(const std::string&)>;
+void warn(const WarningSink& sink, const std::string& message);
 
 }  // namespace octomotion
