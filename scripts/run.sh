@@ -17,6 +17,7 @@ build=${OCTOMOTION_BUILD_DIR:-$root/build}
 
 packages=(build-essential cmake ninja-build pkg-config clang-format
   libeigen3-dev libompl-dev libfcl-dev liburdfdom-dev libassimp-dev liboctomap-dev
+  libboost-serialization-dev libboost-filesystem-dev libboost-system-dev
   libyaml-cpp-dev libnanoflann-dev libgtest-dev libgmock-dev libbenchmark-dev)
 missing=()
 for p in "${packages[@]}"; do

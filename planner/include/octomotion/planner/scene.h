@@ -1,0 +1,84 @@
+// Scene files: what a planning problem is made of, read from a YAML scene (docs/scenes.md) or an
+// OMPL.app rigid-body `.cfg` problem. This layer only parses and validates; building the robot
+// model and the environment octree from a SceneSpec happens elsewhere. Every path in a SceneSpec
+// is absolute (resolved against the scene file's directory).
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "octomotion/octree/rounding.h"
+#include "octomotion/octree/shapes.h"
+
+namespace octomotion {
+
+struct RobotSpec {
+  std::string urdf;                        // a URDF, or
+  std::string mesh;                        // a single mesh: a free-flying rigid body in SE(3)
+  std::string srdf;                        // optional
+  std::vector<std::string> package_paths;  // extra package:// search paths
+  // Mesh conventions: URDF robots reset the mesh root transform (ROS/MoveIt); OMPL.app keeps it
+  // and shifts the robot so that the mean of its vertices is at its origin.
+  bool keep_mesh_root_transform = false;
+  bool center_mesh_vertices = false;
+};
+
+struct EnvironmentObject {
+  enum class Kind { kPrimitive, kMesh, kPointCloud, kOctomap };
+  std::string name;  // given in the file, or "environment[i]"
+  Kind kind = Kind::kPrimitive;
+  Primitive primitive = Sphere{1.0};                // kPrimitive
+  std::string file;                                 // kMesh, kPointCloud, kOctomap
+  Eigen::Vector3d scale = Eigen::Vector3d::Ones();  // kMesh
+  bool keep_mesh_root_transform = true;             // kMesh
+  Eigen::Isometry3d X_WO = Eigen::Isometry3d::Identity();
+};
+
+inline constexpr const char* kCheckerNames[] = {"octree", "octree-fused", "fcl", "fcl-octomap"};
+
+struct OctreeSettings {
+  std::optional<double> resolution;       // metres; empty = auto (derived from the scene)
+  std::optional<double> link_resolution;  // coarser per-link source trees; empty = resolution
+  Rounding rounding = Rounding::kConservative;
+  std::string checker = "octree-fused";  // one of kCheckerNames
+};
+
+// A start or goal: a joint vector (arms) or a pose (rigid bodies).
+struct StateSpec {
+  std::vector<double> joints;
+  std::optional<Eigen::Isometry3d> pose;
+};
+
+struct ProblemSpec {
+  std::optional<StateSpec> start, goal;
+  std::optional<Eigen::AlignedBox3d> bounds;  // SE(3) position bounds; empty = inferred
+  std::string planner = "RRTConnect";         // an OMPL geometric planner
+  double time = 5.0;                          // seconds
+  std::optional<std::uint64_t> seed;
+};
+
+struct SceneSpec {
+  std::string path;  // the scene file
+  std::string name;
+  RobotSpec robot;
+  std::vector<EnvironmentObject> environment;
+  OctreeSettings octree;
+  ProblemSpec problem;
+};
+
+// Dispatches on the extension: .yaml/.yml or .cfg. Throws FileError naming the file and the field.
+SceneSpec loadScene(const std::string& path);
+// `path` names the file in errors and anchors relative paths; the file is not read.
+SceneSpec parseSceneYaml(const std::string& text, const std::string& path);
+SceneSpec parseOmplAppCfg(const std::string& text, const std::string& path);
+
+// Shared by scene parsing and the command line.
+const char* checkerName(const std::string& name);  // validated, or throws InvalidArgument
+// URDF convention: fixed axes, roll about x, then pitch about y, then yaw about z.
+Eigen::Matrix3d rotationFromRpy(double roll, double pitch, double yaw);
+
+}  // namespace octomotion

@@ -1,0 +1,448 @@
+#include "octomotion/planner/scene.h"
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include <yaml-cpp/yaml.h>
+
+#include "octomotion/error.h"
+
+namespace octomotion {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string readFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw FileError(path, "cannot open the scene file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+std::string resolvePath(const std::string& scene_path, const std::string& file) {
+  fs::path p(file);
+  if (p.is_relative()) p = fs::absolute(fs::path(scene_path).parent_path()) / p;
+  return p.lexically_normal().string();
+}
+
+std::string extensionOf(const std::string& path) {
+  std::string ext = fs::path(path).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext;
+}
+
+// Reads YAML fields and reports every problem as "<file>: <field>: <what> (line L)".
+class YamlReader {
+ public:
+  explicit YamlReader(std::string path) : path_(std::move(path)) {}
+
+  [[noreturn]] void fail(const std::string& field, const YAML::Node& node,
+                         const std::string& what) const {
+    std::string where;
+    if (node.IsDefined() && node.Mark().line >= 0) {
+      where = " (line " + std::to_string(node.Mark().line + 1) + ")";
+    }
+    throw FileError(path_, field + ": " + what + where);
+  }
+
+  double number(const YAML::Node& node, const std::string& field) const {
+    if (!node.IsScalar()) fail(field, node, "expected a number");
+    double v = 0;
+    try {
+      v = node.as<double>();
+    } catch (const YAML::Exception&) {
+      fail(field, node, "expected a number, got '" + node.Scalar() + "'");
+    }
+    if (!std::isfinite(v)) fail(field, node, "must be finite");
+    return v;
+  }
+  double positive(const YAML::Node& node, const std::string& field) const {
+    const double v = number(node, field);
+    if (!(v > 0)) fail(field, node, "must be > 0");
+    return v;
+  }
+  std::string string(const YAML::Node& node, const std::string& field) const {
+    if (!node.IsScalar() || node.Scalar().empty()) fail(field, node, "expected a non-empty string");
+    return node.Scalar();
+  }
+  std::vector<double> numbers(const YAML::Node& node, const std::string& field,
+                              std::size_t count = 0) const {
+    if (!node.IsSequence()) fail(field, node, "expected a list of numbers");
+    if (count && node.size() != count) {
+      fail(field, node,
+           "expected " + std::to_string(count) + " numbers, got " + std::to_string(node.size()));
+    }
+    std::vector<double> out;
+    for (std::size_t i = 0; i < node.size(); ++i) {
+      out.push_back(number(node[i], field + "[" + std::to_string(i) + "]"));
+    }
+    return out;
+  }
+  Eigen::Vector3d vector3(const YAML::Node& node, const std::string& field) const {
+    const std::vector<double> v = numbers(node, field, 3);
+    return {v[0], v[1], v[2]};
+  }
+  // Rejects keys this format does not know: a typo must not be silently ignored.
+  void allowOnly(const YAML::Node& map, const std::string& field,
+                 std::initializer_list<const char*> keys) const {
+    if (!map.IsMap()) fail(field, map, "expected a mapping");
+    for (const auto& kv : map) {
+      const std::string key = kv.first.Scalar();
+      bool known = false;
+      for (const char* k : keys) known = known || key == k;
+      if (!known) fail(field.empty() ? key : field + "." + key, kv.first, "unknown key");
+    }
+  }
+  Eigen::Isometry3d pose(const YAML::Node& node, const std::string& field) const {
+    allowOnly(node, field, {"xyz", "rpy", "quat", "axis", "theta"});
+    Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+    if (node["xyz"]) X.translation() = vector3(node["xyz"], field + ".xyz");
+    const int rotations = (node["rpy"] ? 1 : 0) + (node["quat"] ? 1 : 0) + (node["axis"] ? 1 : 0);
+    if (rotations > 1) fail(field, node, "give one of rpy, quat, axis+theta");
+    if (node["rpy"]) {
+      const Eigen::Vector3d rpy = vector3(node["rpy"], field + ".rpy");
+      X.linear() = rotationFromRpy(rpy.x(), rpy.y(), rpy.z());
+    } else if (node["quat"]) {
+      const std::vector<double> q = numbers(node["quat"], field + ".quat", 4);
+      const double norm = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+      if (!(norm > 1e-9)) fail(field + ".quat", node["quat"], "quaternion has zero length");
+      // [qx, qy, qz, qw], normalised (documented in docs/scenes.md).
+      X.linear() =
+          Eigen::Quaterniond(q[3] / norm, q[0] / norm, q[1] / norm, q[2] / norm).toRotationMatrix();
+    } else if (node["axis"]) {
+      const Eigen::Vector3d axis = vector3(node["axis"], field + ".axis");
+      if (!(axis.norm() > 1e-12)) fail(field + ".axis", node["axis"], "axis has zero length");
+      if (!node["theta"]) fail(field, node, "axis needs theta (radians)");
+      const double theta = number(node["theta"], field + ".theta");
+      X.linear() = Eigen::AngleAxisd(theta, axis.normalized()).toRotationMatrix();
+    } else if (node["theta"]) {
+      fail(field + ".theta", node["theta"], "theta needs axis");
+    }
+    return X;
+  }
+
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+};
+
+Primitive primitiveFrom(const YamlReader& r, const std::string& kind, const YAML::Node& node,
+                        const std::string& field) {
+  if (kind == "box") {
+    r.allowOnly(node, field, {"size"});
+    const Eigen::Vector3d size = r.vector3(node["size"], field + ".size");
+    for (int i = 0; i < 3; ++i) {
+      if (!(size[i] > 0)) r.fail(field + ".size", node["size"], "sizes must be > 0");
+    }
+    return Box{size / 2};
+  }
+  if (kind == "sphere") {
+    r.allowOnly(node, field, {"radius"});
+    return Sphere{r.positive(node["radius"], field + ".radius")};
+  }
+  r.allowOnly(node, field, {"radius", "length"});
+  return Cylinder{r.positive(node["radius"], field + ".radius"),
+                  r.positive(node["length"], field + ".length")};
+}
+
+StateSpec stateFrom(const YamlReader& r, const YAML::Node& node, const std::string& field) {
+  StateSpec s;
+  if (node.IsSequence()) {
+    s.joints = r.numbers(node, field);
+    if (s.joints.empty()) r.fail(field, node, "empty joint vector");
+  } else if (node.IsMap()) {
+    s.pose = r.pose(node, field);
+  } else {
+    r.fail(field, node, "expected a joint vector [q1, q2, ...] or a pose {xyz, rpy|quat}");
+  }
+  return s;
+}
+
+void parseRobot(const YamlReader& r, const YAML::Node& node, SceneSpec& scene) {
+  r.allowOnly(node, "robot",
+              {"urdf", "srdf", "mesh", "package_path", "keep_root_transform", "center_vertices"});
+  RobotSpec& robot = scene.robot;
+  if (node["urdf"]) robot.urdf = resolvePath(r.path(), r.string(node["urdf"], "robot.urdf"));
+  if (node["mesh"]) robot.mesh = resolvePath(r.path(), r.string(node["mesh"], "robot.mesh"));
+  if (robot.urdf.empty() == robot.mesh.empty()) {
+    r.fail("robot", node, "give exactly one of urdf (an arm) or mesh (a rigid body)");
+  }
+  if (node["srdf"]) robot.srdf = resolvePath(r.path(), r.string(node["srdf"], "robot.srdf"));
+  if (const YAML::Node paths = node["package_path"]) {
+    if (paths.IsScalar()) {
+      robot.package_paths.push_back(resolvePath(r.path(), paths.Scalar()));
+    } else if (paths.IsSequence()) {
+      for (std::size_t i = 0; i < paths.size(); ++i) {
+        robot.package_paths.push_back(resolvePath(
+            r.path(), r.string(paths[i], "robot.package_path[" + std::to_string(i) + "]")));
+      }
+    } else {
+      r.fail("robot.package_path", paths, "expected a path or a list of paths");
+    }
+  }
+  robot.keep_mesh_root_transform = !robot.mesh.empty();
+  if (node["keep_root_transform"]) {
+    robot.keep_mesh_root_transform = node["keep_root_transform"].as<bool>();
+  }
+  if (node["center_vertices"]) robot.center_mesh_vertices = node["center_vertices"].as<bool>();
+}
+
+void parseEnvironment(const YamlReader& r, const YAML::Node& node, SceneSpec& scene) {
+  if (!node.IsSequence()) r.fail("environment", node, "expected a list of objects");
+  for (std::size_t i = 0; i < node.size(); ++i) {
+    const std::string field = "environment[" + std::to_string(i) + "]";
+    const YAML::Node item = node[i];
+    r.allowOnly(item, field,
+                {"name", "pose", "box", "sphere", "cylinder", "mesh", "pointcloud", "octomap"});
+    EnvironmentObject obj;
+    obj.name = item["name"] ? r.string(item["name"], field + ".name") : field;
+    if (item["pose"]) obj.X_WO = r.pose(item["pose"], field + ".pose");
+    int kinds = 0;
+    for (const char* kind : {"box", "sphere", "cylinder"}) {
+      if (!item[kind]) continue;
+      ++kinds;
+      obj.kind = EnvironmentObject::Kind::kPrimitive;
+      obj.primitive = primitiveFrom(r, kind, item[kind], field + "." + kind);
+    }
+    if (const YAML::Node mesh = item["mesh"]) {
+      ++kinds;
+      r.allowOnly(mesh, field + ".mesh", {"file", "scale", "keep_root_transform"});
+      obj.kind = EnvironmentObject::Kind::kMesh;
+      obj.file = resolvePath(r.path(), r.string(mesh["file"], field + ".mesh.file"));
+      if (mesh["scale"]) obj.scale = r.vector3(mesh["scale"], field + ".mesh.scale");
+      for (int a = 0; a < 3; ++a) {
+        if (obj.scale[a] == 0) r.fail(field + ".mesh.scale", mesh["scale"], "scale of 0");
+      }
+      if (mesh["keep_root_transform"]) {
+        obj.keep_mesh_root_transform = mesh["keep_root_transform"].as<bool>();
+      }
+    }
+    for (const char* kind : {"pointcloud", "octomap"}) {
+      if (!item[kind]) continue;
+      ++kinds;
+      r.allowOnly(item[kind], field + "." + kind, {"file"});
+      obj.kind = std::strcmp(kind, "octomap") == 0 ? EnvironmentObject::Kind::kOctomap
+                                                   : EnvironmentObject::Kind::kPointCloud;
+      obj.file = resolvePath(
+          r.path(), r.string(item[kind]["file"], field + "." + std::string(kind) + ".file"));
+    }
+    if (kinds != 1) {
+      r.fail(field, item, "give exactly one of box, sphere, cylinder, mesh, pointcloud, octomap");
+    }
+    scene.environment.push_back(std::move(obj));
+  }
+}
+
+void parseOctree(const YamlReader& r, const YAML::Node& node, SceneSpec& scene) {
+  r.allowOnly(node, "octree", {"resolution", "link_resolution", "rounding", "checker"});
+  OctreeSettings& s = scene.octree;
+  if (const YAML::Node res = node["resolution"]) {
+    if (!(res.IsScalar() && res.Scalar() == "auto")) {
+      s.resolution = r.positive(res, "octree.resolution");
+    }
+  }
+  if (node["link_resolution"]) {
+    s.link_resolution = r.positive(node["link_resolution"], "octree.link_resolution");
+  }
+  if (node["rounding"]) {
+    const std::string v = r.string(node["rounding"], "octree.rounding");
+    try {
+      s.rounding = roundingFromString(v.c_str());
+    } catch (const InvalidArgument& e) {
+      r.fail("octree.rounding", node["rounding"], e.what());
+    }
+  }
+  if (node["checker"]) {
+    const std::string v = r.string(node["checker"], "octree.checker");
+    try {
+      s.checker = checkerName(v);
+    } catch (const InvalidArgument& e) {
+      r.fail("octree.checker", node["checker"], e.what());
+    }
+  }
+}
+
+void parseProblem(const YamlReader& r, const YAML::Node& node, SceneSpec& scene) {
+  r.allowOnly(node, "problem", {"start", "goal", "bounds", "planner", "time", "seed"});
+  ProblemSpec& p = scene.problem;
+  if (node["start"]) p.start = stateFrom(r, node["start"], "problem.start");
+  if (node["goal"]) p.goal = stateFrom(r, node["goal"], "problem.goal");
+  if (const YAML::Node b = node["bounds"]) {
+    r.allowOnly(b, "problem.bounds", {"min", "max"});
+    const Eigen::Vector3d lo = r.vector3(b["min"], "problem.bounds.min");
+    const Eigen::Vector3d hi = r.vector3(b["max"], "problem.bounds.max");
+    if (!(lo.array() < hi.array()).all()) r.fail("problem.bounds", b, "min must be < max");
+    p.bounds = Eigen::AlignedBox3d(lo, hi);
+  }
+  if (node["planner"]) p.planner = r.string(node["planner"], "problem.planner");
+  if (node["time"]) p.time = r.positive(node["time"], "problem.time");
+  if (node["seed"]) {
+    const double seed = r.number(node["seed"], "problem.seed");
+    if (seed < 0 || seed != std::floor(seed) || seed > 9.0e15) {
+      r.fail("problem.seed", node["seed"], "expected a non-negative integer");
+    }
+    p.seed = static_cast<std::uint64_t>(seed);
+  }
+}
+
+}  // namespace
+
+Eigen::Matrix3d rotationFromRpy(double roll, double pitch, double yaw) {
+  return (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) *
+          Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) *
+          Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX()))
+      .toRotationMatrix();
+}
+
+const char* checkerName(const std::string& name) {
+  for (const char* known : kCheckerNames) {
+    if (name == known) return known;
+  }
+  throw InvalidArgument("checker: expected octree, octree-fused, fcl or fcl-octomap, got '" + name +
+                        "'");
+}
+
+SceneSpec parseSceneYaml(const std::string& text, const std::string& path) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(text);
+  } catch (const YAML::ParserException& e) {
+    throw FileError(path,
+                    "YAML syntax error at line " + std::to_string(e.mark.line + 1) + ": " + e.msg);
+  }
+  const YamlReader r(path);
+  if (!root.IsMap()) throw FileError(path, "expected a YAML mapping with robot, environment, ...");
+  r.allowOnly(root, "", {"name", "robot", "environment", "octree", "problem"});
+  SceneSpec scene;
+  scene.path = path;
+  scene.name = root["name"] ? r.string(root["name"], "name") : fs::path(path).stem().string();
+  try {
+    if (!root["robot"]) throw FileError(path, "robot: missing (give robot.urdf or robot.mesh)");
+    parseRobot(r, root["robot"], scene);
+    if (root["environment"]) parseEnvironment(r, root["environment"], scene);
+    if (root["octree"]) parseOctree(r, root["octree"], scene);
+    if (root["problem"]) parseProblem(r, root["problem"], scene);
+  } catch (const YAML::Exception& e) {
+    // Type conversion failures that slipped through (e.g. a bool that is not one).
+    throw FileError(path,
+                    "invalid value at line " + std::to_string(e.mark.line + 1) + ": " + e.msg);
+  }
+  return scene;
+}
+
+SceneSpec parseOmplAppCfg(const std::string& text, const std::string& path) {
+  // INI sections; later keys override earlier ones except in [planner] (a list).
+  std::map<std::string, std::string> problem;
+  std::vector<std::string> planners;
+  std::string section;
+  std::istringstream lines(text);
+  std::string line;
+  int number = 0;
+  auto trim = [](std::string s) {
+    const auto b = s.find_first_not_of(" \t\r");
+    const auto e = s.find_last_not_of(" \t\r");
+    return b == std::string::npos ? std::string() : s.substr(b, e - b + 1);
+  };
+  while (std::getline(lines, line)) {
+    ++number;
+    line = trim(line);
+    if (line.empty() || line[0] == '#' || line[0] == ';') continue;
+    if (line.front() == '[') {
+      if (line.back() != ']') {
+        throw FileError(path, "line " + std::to_string(number) + ": unterminated section");
+      }
+      section = trim(line.substr(1, line.size() - 2));
+      continue;
+    }
+    const auto eq = line.find('=');
+    if (eq == std::string::npos) {
+      throw FileError(path, "line " + std::to_string(number) + ": expected key = value");
+    }
+    const std::string key = trim(line.substr(0, eq));
+    const std::string value = trim(line.substr(eq + 1));
+    if (section == "problem") problem[key] = value;
+    if (section == "planner" && key.find('.') == std::string::npos) planners.push_back(key);
+    if (section == "benchmark" && key == "time_limit") problem["__time_limit"] = value;
+  }
+  auto get = [&](const std::string& key) -> const std::string& {
+    const auto it = problem.find(key);
+    if (it == problem.end()) throw FileError(path, "[problem] " + key + ": missing");
+    return it->second;
+  };
+  auto num = [&](const std::string& key) {
+    const std::string& v = get(key);
+    char* end = nullptr;
+    const double d = std::strtod(v.c_str(), &end);
+    if (v.empty() || *end != '\0' || !std::isfinite(d)) {
+      throw FileError(path, "[problem] " + key + ": expected a finite number, got '" + v + "'");
+    }
+    return d;
+  };
+  SceneSpec scene;
+  scene.path = path;
+  scene.name = problem.count("name") ? problem["name"] : fs::path(path).stem().string();
+  scene.robot.mesh = resolvePath(path, get("robot"));
+  scene.robot.keep_mesh_root_transform = true;  // OMPL.app keeps the Collada root transform
+  scene.robot.center_mesh_vertices = true;      // and centres the robot on its vertex mean
+  EnvironmentObject world;
+  world.name = "world";
+  world.kind = EnvironmentObject::Kind::kMesh;
+  world.file = resolvePath(path, get("world"));
+  world.keep_mesh_root_transform = true;
+  scene.environment.push_back(world);
+  auto pose = [&](const std::string& prefix) {
+    Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+    // One at a time: a missing key must be reported in x, y, z order.
+    const double x = num(prefix + ".x");
+    const double y = num(prefix + ".y");
+    const double z = num(prefix + ".z");
+    X.translation() = Eigen::Vector3d(x, y, z);
+    if (problem.count(prefix + ".theta")) {
+      Eigen::Vector3d axis;
+      axis.x() = num(prefix + ".axis.x");
+      axis.y() = num(prefix + ".axis.y");
+      axis.z() = num(prefix + ".axis.z");
+      if (!(axis.norm() > 1e-12)) throw FileError(path, "[problem] " + prefix + ".axis: zero");
+      X.linear() = Eigen::AngleAxisd(num(prefix + ".theta"), axis.normalized()).toRotationMatrix();
+    }
+    StateSpec s;
+    s.pose = X;
+    return s;
+  };
+  scene.problem.start = pose("start");
+  scene.problem.goal = pose("goal");
+  if (problem.count("volume.min.x")) {
+    Eigen::Vector3d lo, hi;
+    for (int a = 0; a < 3; ++a) {
+      const std::string axis(1, "xyz"[a]);
+      lo[a] = num("volume.min." + axis);
+      hi[a] = num("volume.max." + axis);
+    }
+    if (!(lo.array() < hi.array()).all()) {
+      throw FileError(path, "[problem] volume: min must be < max");
+    }
+    scene.problem.bounds = Eigen::AlignedBox3d(lo, hi);
+  }
+  if (problem.count("__time_limit")) {
+    const double t = num("__time_limit");
+    if (!(t > 0)) throw FileError(path, "[benchmark] time_limit: must be > 0");
+    scene.problem.time = t;
+  }
+  return scene;
+}
+
+SceneSpec loadScene(const std::string& path) {
+  const std::string ext = extensionOf(path);
+  if (ext == ".cfg") return parseOmplAppCfg(readFile(path), path);
+  if (ext == ".yaml" || ext == ".yml") return parseSceneYaml(readFile(path), path);
+  throw FileError(path, "unknown scene format (expected .yaml, .yml or an OMPL.app .cfg)");
+}
+
+}  // namespace octomotion
