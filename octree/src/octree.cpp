@@ -10,7 +10,9 @@ namespace octomotion {
 
 Octree::Octree(const WorldGrid& grid) : grid_(grid) {}
 
-Octree Octree::full(const WorldGrid& grid) { return Octree(grid, Color::kBlack, {}); }
+Octree Octree::full(const WorldGrid& grid) {
+  return Octree(grid, Color::kBlack, {});
+}
 
 Octree Octree::fromVoxels(const WorldGrid& grid, const std::vector<Voxel>& voxels) {
   OctreeBuilder builder(grid);

@@ -6,7 +6,9 @@
 
 namespace octomotion {
 
-OctreeBuilder::OctreeBuilder(const WorldGrid& grid) : grid_(grid) { allocate(); }
+OctreeBuilder::OctreeBuilder(const WorldGrid& grid) : grid_(grid) {
+  allocate();
+}
 
 OctreeBuilder::OctreeBuilder(const Octree& tree) : OctreeBuilder(tree.grid()) {
   if (tree.rootColor() == Color::kBlack) {

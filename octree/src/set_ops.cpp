@@ -24,8 +24,7 @@ void combine(Op op, const Octree& a, std::uint32_t ia, const Octree& b, std::uin
              OctreeBuilder& out, std::uint32_t to) {
   const OctreeNode& na = a.nodes()[ia];
   const OctreeNode& nb = b.nodes()[ib];
-  const unsigned black =
-      op == Op::kUnite ? (na.black | nb.black) : (na.black & nb.black);
+  const unsigned black = op == Op::kUnite ? (na.black | nb.black) : (na.black & nb.black);
   out.node(to).black = static_cast<std::uint8_t>(black);
   // Children whose result is a copy of one side's gray subtree.
   const unsigned a_only = op == Op::kUnite ? (na.gray & ~nb.occupied()) : (na.gray & nb.black);
@@ -65,7 +64,11 @@ Octree apply(Op op, const Octree& a, const Octree& b) {
 
 }  // namespace
 
-Octree unite(const Octree& a, const Octree& b) { return apply(Op::kUnite, a, b); }
-Octree intersect(const Octree& a, const Octree& b) { return apply(Op::kIntersect, a, b); }
+Octree unite(const Octree& a, const Octree& b) {
+  return apply(Op::kUnite, a, b);
+}
+Octree intersect(const Octree& a, const Octree& b) {
+  return apply(Op::kIntersect, a, b);
+}
 
 }  // namespace octomotion

@@ -26,8 +26,7 @@ bool intersectsFrom(const OctreeNode* a_nodes, std::uint32_t ia, const OctreeNod
   return false;
 }
 
-void collectLeaves(const Octree& t, std::uint32_t index, const Cube& cube,
-                   std::vector<Cube>& out) {
+void collectLeaves(const Octree& t, std::uint32_t index, const Cube& cube, std::vector<Cube>& out) {
   const OctreeNode& n = t.nodes()[index];
   for (int k = 0; k < 8; ++k) {
     if (n.black & (1u << k)) {

@@ -27,7 +27,11 @@ std::string readFile(const std::string& path) {
 
 std::string resolvePath(const std::string& scene_path, const std::string& file) {
   fs::path p(file);
-  if (p.is_relative()) p = fs::absolute(fs::path(scene_path).parent_path()) / p;
+  if (p.is_relative()) {
+    // A scene named without a directory lives in the current one.
+    const fs::path dir = fs::path(scene_path).parent_path();
+    p = (dir.empty() ? fs::current_path() : fs::absolute(dir)) / p;
+  }
   return p.lexically_normal().string();
 }
 

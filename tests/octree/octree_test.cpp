@@ -16,7 +16,9 @@ namespace {
 using test::DenseGrid;
 using test::randomShape;
 
-WorldGrid gridOfDepth(int depth) { return WorldGrid(Eigen::Vector3d(-1, 2, 0.5), 0.05, depth); }
+WorldGrid gridOfDepth(int depth) {
+  return WorldGrid(Eigen::Vector3d(-1, 2, 0.5), 0.05, depth);
+}
 
 TEST(Octree, EmptyAndFull) {
   const WorldGrid grid = gridOfDepth(4);

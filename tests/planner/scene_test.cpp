@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 
 #include "octomotion/error.h"
 #include "octomotion/planner/scene.h"
@@ -209,6 +210,11 @@ kpiece.range = 3
   }
   EXPECT_THROW(parseOmplAppCfg("[problem\n", "/x.cfg"), FileError);
   EXPECT_THROW(parseOmplAppCfg("[problem]\nno equals sign\n", "/x.cfg"), FileError);
+}
+
+TEST(Scene, SceneWithoutDirectoryIsRelativeToTheWorkingDirectory) {
+  const SceneSpec s = parseSceneYaml("robot: {mesh: body.stl}", "scene.yaml");
+  EXPECT_EQ(s.robot.mesh, (std::filesystem::current_path() / "body.stl").string());
 }
 
 TEST(Scene, LoadDispatchesOnExtension) {

@@ -78,8 +78,8 @@ inline DenseGrid randomShape(int depth, std::mt19937_64& rng, int boxes = 3, int
       hi[a] = std::max(p, q);
     }
     const bool ball = rng() & 1;
-    const double cx = (lo[0] + hi[0]) / 2.0, cy = (lo[1] + hi[1]) / 2.0,
-                 cz = (lo[2] + hi[2]) / 2.0, r = (hi[0] - lo[0]) / 2.0 + 0.5;
+    const double cx = (lo[0] + hi[0]) / 2.0, cy = (lo[1] + hi[1]) / 2.0, cz = (lo[2] + hi[2]) / 2.0,
+                 r = (hi[0] - lo[0]) / 2.0 + 0.5;
     for (std::uint32_t z = lo[2]; z <= hi[2]; ++z)
       for (std::uint32_t y = lo[1]; y <= hi[1]; ++y)
         for (std::uint32_t x = lo[0]; x <= hi[0]; ++x) {

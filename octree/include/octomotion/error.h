@@ -19,7 +19,8 @@ class InvalidArgument : public Error {
   using Error::Error;
 };
 
-// A file that is missing, truncated, corrupt or of the wrong kind. The message starts with the path.
+// A file that is missing, truncated, corrupt or of the wrong kind. The message starts with the
+// path.
 class FileError : public Error {
  public:
   FileError(const std::string& path, const std::string& what) : Error(path + ": " + what) {}

@@ -22,8 +22,7 @@ struct OctreeNode {
   std::uint8_t gray = 0;
   std::uint8_t occupied() const { return static_cast<std::uint8_t>(black | gray); }
   std::uint32_t childIndex(int k) const {
-    return first_child +
-           static_cast<std::uint32_t>(__builtin_popcount(gray & ((1u << k) - 1u)));
+    return first_child + static_cast<std::uint32_t>(__builtin_popcount(gray & ((1u << k) - 1u)));
   }
   friend bool operator==(const OctreeNode& a, const OctreeNode& b) {
     return a.first_child == b.first_child && a.black == b.black && a.gray == b.gray;
@@ -48,7 +47,8 @@ class Octree {
   static Octree fromNodes(const WorldGrid& grid, Color root, std::vector<OctreeNode> nodes);
 
   const WorldGrid& grid() const { return grid_; }
-  // kGray when the tree has internal nodes (then nodes()[0] is the root), else the universe's colour.
+  // kGray when the tree has internal nodes (then nodes()[0] is the root), else the universe's
+  // colour.
   Color rootColor() const { return root_; }
   const std::vector<OctreeNode>& nodes() const { return nodes_; }
 

@@ -57,9 +57,7 @@ class WorldGrid {
   Cube universe() const { return {depth_, {0, 0, 0}}; }
 
   // Continuous grid coordinates (voxel units, 0 at the origin corner) of a world point, and back.
-  Eigen::Vector3d toGrid(const Eigen::Vector3d& p_W) const {
-    return (p_W - origin_) / voxel_size_;
-  }
+  Eigen::Vector3d toGrid(const Eigen::Vector3d& p_W) const { return (p_W - origin_) / voxel_size_; }
   Eigen::Vector3d toWorld(const Eigen::Vector3d& p_G) const { return origin_ + p_G * voxel_size_; }
   // The voxel containing a world point (half-open voxels); false when outside the universe.
   bool voxelAt(const Eigen::Vector3d& p_W, Voxel* voxel) const;

@@ -1,0 +1,93 @@
+// The fused motion query: does the source tree, moved by X_WS, share a black voxel with the
+// environment? Equivalent to intersects(moveTree(source, X_WS, env.grid(), rounding), env) —
+// same colour rule, same arithmetic for every voxel decision — but no target tree is built:
+// the environment tree and the moved source tree are descended together (a parallel traversal
+// in the sense of Ahuja & Nash 1984 §5, with Weng & Ahuja 1987 §4's Relation B tests, both ways,
+// as the pruning rule), and the walk stops at the first shared black voxel.
+//  - Gray environment cells: the moved source pieces (tight boxes of source subtrees, split
+//    into their children only when much larger than the cell) prune every environment subtree
+//    none of them can reach; black children are examined before gray ones.
+//  - Black environment cells: the source tree is descended under the pieces reaching the cell
+//    and each moved black leaf probes the cell's voxel nearest to its centre with the colour
+//    rule; leaves whose probe failed are settled exactly on the cell's children.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "octomotion/octree/octree.h"
+#include "octomotion/octree/rounding.h"
+
+namespace octomotion {
+
+namespace detail {
+// One moved piece of the source during a query: a gray source node (tight box of its black
+// voxels) or one of its black leaves.
+struct CollisionItem {
+  double g[3];   // moved centre, target voxels
+  double rt[3];  // half-extent of the moved piece along the target axes
+  double rs[3];  // half-extent along the source axes, in target voxels
+  std::uint32_t node;
+  std::int8_t leaf;   // -1: the gray node itself; k: black child k of `node`
+  std::int8_t level;  // level of the leaf cube (leaf items)
+  std::uint8_t mask;  // children of the current cell it may reach (set while visiting it)
+};
+// popcount of a byte without relying on the popcnt instruction (not in baseline x86-64).
+inline int popcount8(unsigned x) {
+  x = x - ((x >> 1) & 0x55u);
+  x = (x & 0x33u) + ((x >> 2) & 0x33u);
+  return static_cast<int>((x + (x >> 4)) & 0x0fu);
+}
+}  // namespace detail
+
+// A source tree prepared once for many collision queries (immutable, shareable across
+// threads): its internal nodes with the tight box of the black voxels under each.
+class MovableSource {
+ public:
+  explicit MovableSource(const Octree& source);
+
+  const WorldGrid& grid() const { return grid_; }
+  Color rootColor() const { return root_; }
+  std::size_t nodeCount() const { return nodes_.size(); }
+
+  struct Node {
+    double centre[3];  // box of the node's black voxels, source grid coordinates
+    double half[3];
+    std::uint32_t first_child;
+    std::uint8_t black, gray;
+    std::int8_t level;  // level of the node's cube
+    Voxel origin;       // min corner of the node's cube
+    std::uint32_t childIndex(int k) const {
+      return first_child + static_cast<std::uint32_t>(detail::popcount8(gray & ((1u << k) - 1u)));
+    }
+  };
+  const std::vector<Node>& nodes() const { return nodes_; }
+
+ private:
+  WorldGrid grid_;
+  Color root_;
+  std::vector<Node> nodes_;
+};
+
+// Per-thread reusable buffers of the fused query: after the first few queries, collides()
+// allocates nothing. Not shareable between concurrent queries.
+class CollisionScratch {
+ public:
+  CollisionScratch() { items.reserve(1024); }
+  std::vector<detail::CollisionItem> items;  // stack of the pieces reaching each visited cell
+};
+
+// True iff intersects(moveTree(source, X_WS, environment.grid(), rounding), environment).
+// On true, *witness (if given) receives a voxel black in both. Const and thread-safe given one
+// scratch per thread. Throws InvalidArgument for an invalid pose.
+bool collides(const MovableSource& source, const Eigen::Isometry3d& X_WS, const Octree& environment,
+              Rounding rounding, CollisionScratch& scratch, Cube* witness = nullptr);
+
+// Convenience form for one-off queries: prepares the source and scratch on every call
+// (allocates, O(source size)); use MovableSource + CollisionScratch in loops.
+bool collides(const Octree& source, const Eigen::Isometry3d& X_WS, const Octree& environment,
+              Rounding rounding, Cube* witness = nullptr);
+
+}  // namespace octomotion

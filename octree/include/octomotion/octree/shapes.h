@@ -1,0 +1,36 @@
+// Solid primitives the builders voxelize, each centred on the origin of its own frame S.
+// A primitive is placed in the world by a pose X_WS (see voxelize.h).
+#pragma once
+
+#include <variant>
+
+#include <Eigen/Core>
+
+namespace octomotion {
+
+// An upright box in its frame: |x| <= half_extents.x() etc.
+struct Box {
+  Eigen::Vector3d half_extents;
+};
+
+// A ball of the given radius about the frame origin.
+struct Sphere {
+  double radius;
+};
+
+// A solid cylinder whose axis is the frame's z axis: x^2 + y^2 <= radius^2, |z| <= length / 2.
+struct Cylinder {
+  double radius;
+  double length;
+};
+
+using Primitive = std::variant<Box, Sphere, Cylinder>;
+
+// Throws InvalidArgument naming the field (e.g. "Box.half_extents.y") when a size is zero,
+// negative, NaN or infinite.
+void validate(const Primitive& shape);
+
+// True when the point (in the shape frame S) is on or inside the shape.
+bool containsPoint(const Primitive& shape, const Eigen::Vector3d& p_S);
+
+}  // namespace octomotion

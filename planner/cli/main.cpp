@@ -1,0 +1,265 @@
+// The octomotion command: plan, check and describe scenes from the shell.
+// Results go to stdout (or --out), progress and timings to stderr; any error is one line on
+// stderr and a non-zero exit status.
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <ompl/base/spaces/SE3StateSpace.h>
+#include <ompl/util/Console.h>
+
+#include "octomotion/error.h"
+#include "octomotion/planner/octree_validity_checker.h"
+#include "octomotion/planner/planning_scene.h"
+
+namespace {
+
+using namespace octomotion;
+
+const char* kUsage = R"(usage:
+  octomotion plan SCENE [--out PATH] [--planner NAME] [--time SECONDS] [--seed N] [options]
+  octomotion check SCENE --states STATES.csv [options]
+  octomotion info SCENE [options]
+SCENE is a YAML scene (docs/scenes.md) or an OMPL.app .cfg problem.
+options:
+  --resolution METRES|auto   voxel size of the environment (overrides the scene)
+  --rounding conservative|center
+  --checker octree|octree-fused|fcl|fcl-octomap
+  --package-path DIR         extra package:// search path (repeatable)
+  --interpolation METRES     plan: spacing of the written path's states (default: OMPL's)
+  --verbose                  OMPL's log messages on stderr
+)";
+
+struct Args {
+  std::string command, scene, out, states;
+  double interpolation = 0;
+  bool verbose = false;
+  SceneOverrides overrides;
+};
+
+double parseNumber(const std::string& flag, const std::string& value) {
+  char* end = nullptr;
+  const double v = std::strtod(value.c_str(), &end);
+  if (value.empty() || *end != '\0' || !std::isfinite(v)) {
+    throw InvalidArgument(flag + ": expected a number, got '" + value + "'");
+  }
+  return v;
+}
+
+Args parseArgs(int argc, char** argv) {
+  Args a;
+  std::vector<std::string> positional;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= argc) throw InvalidArgument(arg + ": missing value");
+      return argv[++i];
+    };
+    if (arg == "--out") {
+      a.out = value();
+    } else if (arg == "--states") {
+      a.states = value();
+    } else if (arg == "--planner") {
+      a.overrides.planner = value();
+    } else if (arg == "--time") {
+      const double t = parseNumber(arg, value());
+      if (!(t > 0)) throw InvalidArgument("--time: must be > 0");
+      a.overrides.time = t;
+    } else if (arg == "--seed") {
+      const double s = parseNumber(arg, value());
+      if (s < 0 || s != std::floor(s)) throw InvalidArgument("--seed: expected an integer >= 0");
+      a.overrides.seed = static_cast<std::uint64_t>(s);
+    } else if (arg == "--resolution") {
+      const std::string v = value();
+      if (v == "auto") {
+        a.overrides.auto_resolution = true;
+      } else {
+        const double r = parseNumber(arg, v);
+        if (!(r > 0)) throw InvalidArgument("--resolution: must be > 0");
+        a.overrides.resolution = r;
+      }
+    } else if (arg == "--rounding") {
+      a.overrides.rounding = roundingFromString(value().c_str());
+    } else if (arg == "--checker") {
+      a.overrides.checker = checkerName(value());
+    } else if (arg == "--package-path") {
+      a.overrides.package_paths.push_back(value());
+    } else if (arg == "--interpolation") {
+      a.interpolation = parseNumber(arg, value());
+      if (!(a.interpolation > 0)) throw InvalidArgument("--interpolation: must be > 0");
+    } else if (arg == "--verbose") {
+      a.verbose = true;
+    } else if (arg == "-h" || arg == "--help") {
+      std::cout << kUsage;
+      std::exit(0);
+    } else if (!arg.empty() && arg[0] == '-') {
+      throw InvalidArgument("unknown option " + arg);
+    } else {
+      positional.push_back(arg);
+    }
+  }
+  if (positional.size() != 2) throw InvalidArgument("expected a command and a scene (see --help)");
+  a.command = positional[0];
+  a.scene = positional[1];
+  if (a.command != "plan" && a.command != "check" && a.command != "info") {
+    throw InvalidArgument("unknown command '" + a.command + "' (plan, check, info)");
+  }
+  if (a.command == "check" && a.states.empty())
+    throw InvalidArgument("check: --states is required");
+  return a;
+}
+
+PlanningScene load(const Args& a) {
+  const auto t0 = std::chrono::steady_clock::now();
+  PlanningScene scene = loadPlanningScene(a.scene, a.overrides, [](const std::string& m) {
+    std::cerr << "octomotion: warning: " << m << "\n";
+  });
+  std::cerr << "octomotion: loaded " << a.scene << " in "
+            << std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()
+            << " s, checker " << scene.checker << ", rounding "
+            << toString(scene.spec.octree.rounding) << "\n";
+  return scene;
+}
+
+int plan(const Args& a) {
+  PlanningScene scene = load(a);
+  if (!scene.spec.problem.start || !scene.spec.problem.goal) {
+    throw FileError(a.scene, "problem: a start and a goal are needed to plan");
+  }
+  std::cerr << "octomotion: planning with " << scene.spec.problem.planner << " for at most "
+            << scene.spec.problem.time << " s\n";
+  const PlanResult r = octomotion::plan(scene, a.interpolation);
+  if (!r.solved) {
+    std::cerr << "octomotion: no solution found in " << r.seconds << " s\n";
+    return 2;
+  }
+  std::cerr << "octomotion: solved in " << r.seconds << " s; path of " << r.path->getStateCount()
+            << " states, length " << r.path->length() << "\n";
+  if (a.out.empty()) {
+    writePath(scene, *r.path, std::cout);
+  } else {
+    std::ofstream out(a.out);
+    if (!out) throw FileError(a.out, "cannot write the path");
+    writePath(scene, *r.path, out);
+    std::cerr << "octomotion: path written to " << a.out << "\n";
+  }
+  return 0;
+}
+
+std::vector<std::string> splitCsv(const std::string& line) {
+  std::vector<std::string> fields;
+  std::stringstream ss(line);
+  std::string f;
+  while (std::getline(ss, f, ',')) {
+    const auto b = f.find_first_not_of(" \t\r"), e = f.find_last_not_of(" \t\r");
+    fields.push_back(b == std::string::npos ? "" : f.substr(b, e - b + 1));
+  }
+  return fields;
+}
+
+int check(const Args& a) {
+  PlanningScene scene = load(a);
+  const RobotModel& robot = scene.model->robot();
+  std::ifstream in(a.states);
+  if (!in) throw FileError(a.states, "cannot open the states file");
+  std::string line;
+  if (!std::getline(in, line)) throw FileError(a.states, "empty file: expected a header");
+  const std::vector<std::string> header = splitCsv(line);
+  // Column of each value the state needs, found by name.
+  std::vector<std::string> wanted;
+  if (robot.isFreeFlying()) {
+    wanted = {"x", "y", "z", "qx", "qy", "qz", "qw"};
+  } else {
+    for (const Variable& v : robot.variables()) wanted.push_back(v.name);
+  }
+  std::vector<std::size_t> column;
+  for (const std::string& w : wanted) {
+    const auto it = std::find(header.begin(), header.end(), w);
+    if (it == header.end()) throw FileError(a.states, "header: missing column '" + w + "'");
+    column.push_back(static_cast<std::size_t>(it - header.begin()));
+  }
+  const auto si = scene.setup->getSpaceInformation();
+  si->setup();
+  ompl::base::ScopedState<> state(si);
+  std::vector<double> values(wanted.size());
+  std::cout << "index,valid,time_ns\n";
+  std::size_t index = 0, row = 1, valid_count = 0;
+  while (std::getline(in, line)) {
+    ++row;
+    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+    const std::vector<std::string> fields = splitCsv(line);
+    if (fields.size() != header.size()) {
+      throw FileError(a.states, "row " + std::to_string(row) + ": expected " +
+                                    std::to_string(header.size()) + " fields, got " +
+                                    std::to_string(fields.size()));
+    }
+    for (std::size_t k = 0; k < wanted.size(); ++k) {
+      char* end = nullptr;
+      const std::string& f = fields[column[k]];
+      values[k] = std::strtod(f.c_str(), &end);  // NaN/Inf parse, and are invalid states
+      if (f.empty() || *end != '\0') {
+        throw FileError(a.states, "row " + std::to_string(row) + ", column " + wanted[k] +
+                                      ": expected a number, got '" + f + "'");
+      }
+    }
+    if (robot.isFreeFlying()) {
+      auto* s = state->as<ompl::base::SE3StateSpace::StateType>();
+      s->setXYZ(values[0], values[1], values[2]);
+      s->rotation().x = values[3];
+      s->rotation().y = values[4];
+      s->rotation().z = values[5];
+      s->rotation().w = values[6];
+    } else {
+      configurationToState(robot, values, Eigen::Isometry3d::Identity(), state.get());
+    }
+    const auto t0 = std::chrono::steady_clock::now();
+    const bool valid = si->isValid(state.get());
+    const auto ns =
+        std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - t0)
+            .count();
+    valid_count += valid ? 1 : 0;
+    std::cout << index++ << ',' << (valid ? 1 : 0) << ',' << ns << '\n';
+  }
+  std::cerr << "octomotion: " << valid_count << " of " << index << " states valid\n";
+  return 0;
+}
+
+int info(const Args& a) {
+  PlanningScene scene = load(a);
+  const RobotModel& robot = scene.model->robot();
+  std::cout << "scene: " << scene.spec.name << " (" << scene.spec.path << ")\n"
+            << "robot: " << robot.name() << ", " << robot.linkCount() << " links, "
+            << (robot.isFreeFlying() ? std::string("free-flying (SE(3))")
+                                     : std::to_string(robot.variableCount()) + " joints")
+            << "\n";
+  if (!robot.isFreeFlying()) {
+    std::cout << "joint order:";
+    for (const Variable& v : robot.variables()) std::cout << ' ' << v.name;
+    std::cout << "\n";
+  }
+  std::cout << "resolution: " << *scene.spec.octree.resolution << " m, rounding "
+            << toString(scene.spec.octree.rounding) << ", checker " << scene.checker << "\n"
+            << scene.model->report().toString();
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    const Args args = parseArgs(argc, argv);
+    ompl::msg::setLogLevel(args.verbose ? ompl::msg::LOG_INFO : ompl::msg::LOG_WARN);
+    if (args.command == "plan") return plan(args);
+    if (args.command == "check") return check(args);
+    return info(args);
+  } catch (const std::exception& e) {
+    std::cerr << "octomotion: error: " << e.what() << "\n";
+    return 1;
+  }
+}

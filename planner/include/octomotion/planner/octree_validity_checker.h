@@ -1,0 +1,56 @@
+// The OMPL plugin: a StateValidityChecker backed by an OctreeCollisionModel. A thin layer in the
+// manner of OMPL's VAMP checker — the model is constant and shared, every thread gets its own
+// scratch, and isValid never throws (a NaN or out-of-bounds state is simply invalid).
+//
+// State spaces (makeStateSpace):
+// - fixed-base robots: a RealVectorStateSpace with one dimension per entry of q, in
+//   RobotModel::variables() order (movable, non-mimic joints in depth-first URDF order), bounded
+//   by the URDF limits; continuous joints get [-pi, pi] (the planner does not take the short way
+//   across +-pi; any value is still valid for forward kinematics);
+// - free-flying robots: an SE3StateSpace with the given position bounds; the quaternion is
+//   normalised before use (OMPL keeps it unit; a zero or NaN quaternion is invalid).
+#pragma once
+
+#include <memory>
+
+#include <ompl/base/SpaceInformation.h>
+#include <ompl/base/StateValidityChecker.h>
+
+#include "octomotion/planner/collision_model.h"
+
+namespace octomotion {
+
+ompl::base::StateSpacePtr makeStateSpace(const RobotModel& robot,
+                                         const Eigen::AlignedBox3d* position_bounds = nullptr);
+
+// Reads a state of a space made by makeStateSpace into q (fixed base) or X_WB (free-flying).
+// Returns false when the state holds a NaN/Inf or an unusable quaternion.
+bool stateToConfiguration(const RobotModel& robot, const ompl::base::State* state,
+                          std::vector<double>& q, Eigen::Isometry3d& X_WB);
+// The inverse, for starts and goals.
+void configurationToState(const RobotModel& robot, const std::vector<double>& q,
+                          const Eigen::Isometry3d& X_WB, ompl::base::State* state);
+
+class OctreeValidityChecker : public ompl::base::StateValidityChecker {
+ public:
+  OctreeValidityChecker(const ompl::base::SpaceInformationPtr& si,
+                        std::shared_ptr<const OctreeCollisionModel> model, CheckerPath path);
+
+  // Invalid when outside the space's bounds, non-finite, or in collision (environment or
+  // self-collision between checked pairs). Const and thread-safe.
+  bool isValid(const ompl::base::State* state) const override;
+  // A lower bound on the distance to the environment (0 when invalid); see
+  // OctreeCollisionModel::clearanceLowerBound for how tight it is.
+  double clearance(const ompl::base::State* state) const override;
+
+  const OctreeCollisionModel& model() const { return *model_; }
+  CheckerPath path() const { return path_; }
+
+ private:
+  bool check(const ompl::base::State* state, CheckScratch& scratch) const;
+
+  std::shared_ptr<const OctreeCollisionModel> model_;
+  CheckerPath path_;
+};
+
+}  // namespace octomotion

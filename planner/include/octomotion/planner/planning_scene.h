@@ -1,0 +1,74 @@
+// From a scene file to an OMPL problem: loads the robot (URDF + SRDF, or a rigid-body mesh),
+// builds the collision model on a universe fitted to the scene, makes the state space and the
+// validity checker, and solves with the scene's OMPL planner.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <ompl/base/Planner.h>
+#include <ompl/geometric/PathGeometric.h>
+#include <ompl/geometric/SimpleSetup.h>
+
+#include "octomotion/planner/collision_model.h"
+#include "octomotion/planner/fcl_checker.h"
+#include "octomotion/planner/scene.h"
+
+namespace octomotion {
+
+// What the command line may override in a scene.
+struct SceneOverrides {
+  std::optional<double> resolution;  // metres; NaN-free, > 0
+  bool auto_resolution = false;      // --resolution auto
+  std::optional<Rounding> rounding;
+  std::optional<std::string> checker;
+  std::optional<std::string> planner;
+  std::optional<double> time;
+  std::optional<std::uint64_t> seed;
+  std::vector<std::string> package_paths;
+};
+
+// The resolution used when a scene says `auto` (or a .cfg says nothing): fixed-base arms 1 cm;
+// free-flying bodies max(scene diagonal / 1024, robot diagonal / 32), so the body spans about 32
+// voxels and the universe needs at most 10 levels.
+double autoResolution(const RobotModel& robot, const Eigen::AlignedBox3d& scene_box,
+                      double robot_diagonal);
+
+struct PlanningScene {
+  SceneSpec spec;  // with the overrides applied
+  std::shared_ptr<const OctreeCollisionModel> model;
+  std::shared_ptr<const FclCollisionModel> fcl_model;  // the exact reference, same scene
+  ompl::geometric::SimpleSetupPtr setup;  // checker installed, start/goal set if the scene has them
+  std::string checker;                    // the checker in use
+};
+
+// Throws octomotion::Error (naming the file and field) for anything wrong with the scene.
+PlanningScene loadPlanningScene(const std::string& scene_path, const SceneOverrides& overrides = {},
+                                const WarningSink& warnings = {});
+
+// Makes an OMPL geometric planner by name (RRTConnect, RRT, RRTstar, PRM, KPIECE1, BKPIECE1,
+// LBKPIECE1, EST, SBL, BITstar, InformedRRTstar, PRMstar, LazyPRM, FMT, ...); InvalidArgument
+// otherwise.
+ompl::base::PlannerPtr makePlanner(const std::string& name,
+                                   const ompl::base::SpaceInformationPtr& si);
+
+struct PlanResult {
+  bool solved = false;  // an exact solution was found
+  double seconds = 0;   // planning time
+  std::size_t checks = 0;
+  std::shared_ptr<ompl::geometric::PathGeometric> path;  // simplified and interpolated
+};
+
+// Solves the scene's problem (its planner, time limit and seed), simplifies the path and
+// interpolates it so consecutive states are at most `resolution` apart in the space's distance
+// (0: OMPL's default interpolation).
+PlanResult plan(PlanningScene& scene, double interpolation = 0.0);
+
+// OMPL's path format: one state per line, SE(3) as "x y z qx qy qz qw", joints in q order.
+void writePath(const PlanningScene& scene, const ompl::geometric::PathGeometric& path,
+               std::ostream& out);
+
+}  // namespace octomotion

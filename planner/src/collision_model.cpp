@@ -1,0 +1,397 @@
+#include "octomotion/planner/collision_model.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <sstream>
+
+#include "octomotion/motion/collides.h"
+#include "octomotion/motion/move_tree.h"
+#include "octomotion/octree/mesh.h"
+#include "octomotion/octree/set_ops.h"
+#include "octomotion/octree/traversal.h"
+#include "octomotion/octree/voxelize.h"
+
+namespace octomotion {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double secondsSince(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+// Clearance spheres circumscribe the level-kSphereLevel cubes that hold black voxels: coarse
+// enough to be few, fine enough (8 voxels) to keep the bound useful.
+constexpr int kSphereLevel = 3;
+
+Eigen::AlignedBox3d primitiveBox(const Primitive& shape, const Eigen::Isometry3d& X) {
+  Eigen::Vector3d half;
+  if (const auto* b = std::get_if<Box>(&shape)) {
+    half = b->half_extents;
+  } else if (const auto* s = std::get_if<Sphere>(&shape)) {
+    half = Eigen::Vector3d::Constant(s->radius);
+  } else {
+    const auto& c = std::get<Cylinder>(shape);
+    half = Eigen::Vector3d(c.radius, c.radius, c.length / 2);
+  }
+  Eigen::AlignedBox3d box;
+  for (int i = 0; i < 8; ++i) {
+    box.extend(X * Eigen::Vector3d((i & 1) ? half.x() : -half.x(), (i & 2) ? half.y() : -half.y(),
+                                   (i & 4) ? half.z() : -half.z()));
+  }
+  return box;
+}
+
+double distanceToBox(const Eigen::Vector3d& p, const Eigen::AlignedBox3d& box) {
+  return (p - p.cwiseMax(box.min()).cwiseMin(box.max())).norm();
+}
+
+// Distance from p to the nearest black voxel of `tree`, or +inf when there is none closer than
+// `best`: branch and bound over the tree, nearest children first.
+double distanceToBlack(const Octree& tree, const Eigen::Vector3d& p_W, double best) {
+  if (tree.empty()) return best;
+  const WorldGrid& g = tree.grid();
+  auto cubeBox = [&](const Cube& c) { return Eigen::AlignedBox3d(g.cubeMin(c), g.cubeMax(c)); };
+  if (tree.rootColor() == Color::kBlack) {
+    return std::min(best, distanceToBox(p_W, cubeBox(g.universe())));
+  }
+  struct Item {
+    std::uint32_t index;
+    Cube cube;
+  };
+  std::vector<Item> stack{{0, g.universe()}};
+  while (!stack.empty()) {
+    const Item item = stack.back();
+    stack.pop_back();
+    if (distanceToBox(p_W, cubeBox(item.cube)) >= best) continue;
+    const OctreeNode& n = tree.nodes()[item.index];
+    for (unsigned m = n.occupied(); m; m &= m - 1) {
+      const int k = __builtin_ctz(m);
+      const Cube child = item.cube.child(k);
+      const double d = distanceToBox(p_W, cubeBox(child));
+      if (d >= best) continue;
+      if (n.black & (1u << k)) {
+        best = d;
+      } else {
+        stack.push_back({n.childIndex(k), child});
+      }
+    }
+  }
+  return best;
+}
+
+}  // namespace
+
+std::uint64_t nextModelId() {
+  static std::atomic<std::uint64_t> next{1};
+  return next.fetch_add(1);
+}
+
+CheckerPath checkerPathFromName(const std::string& name) {
+  if (name == "octree") return CheckerPath::kMoveTree;
+  if (name == "octree-fused") return CheckerPath::kFused;
+  throw InvalidArgument("octree checker path: expected 'octree' or 'octree-fused', got '" + name +
+                        "'");
+}
+
+OctreeCollisionModel::OctreeCollisionModel(RobotModel robot, const EnvironmentGeometry& environment,
+                                           const CollisionModelOptions& options)
+    : id_(nextModelId()),
+      robot_(std::move(robot)),
+      options_(options),
+      environment_(WorldGrid({0, 0, 0}, 1, 1)) {
+  const auto start = Clock::now();
+  const double link_res = options.link_resolution.value_or(options.resolution);
+  if (!(std::isfinite(link_res) && link_res > 0)) {
+    throw InvalidArgument("link resolution must be finite and > 0");
+  }
+  if (robot_.isFreeFlying() && !options.base_position_bounds) {
+    throw InvalidArgument("a free-flying robot needs base_position_bounds (the SE(3) bounds)");
+  }
+  report_.link_resolution = link_res;
+
+  // 1. Each link's source tree, in its own frame, at the link resolution.
+  std::map<std::pair<std::string, std::array<double, 3>>, TriangleMesh> meshes;
+  const int n_links = robot_.linkCount();
+  std::vector<LinkTree> trees(static_cast<std::size_t>(n_links));
+  std::vector<double> link_reach_from_origin(static_cast<std::size_t>(n_links), 0.0);
+  report_.links.resize(static_cast<std::size_t>(n_links));
+  for (int i = 0; i < n_links; ++i) {
+    const Link& link = robot_.link(i);
+    LinkReport& lr = report_.links[static_cast<std::size_t>(i)];
+    lr.name = link.name;
+    if (!link.hasCollision()) continue;
+    const auto t0 = Clock::now();
+    // Bounding box of the geometry in the link frame, to fit the source grid.
+    Eigen::AlignedBox3d box_L;
+    std::vector<const TriangleMesh*> element_mesh;
+    for (const CollisionElement& e : link.collision) {
+      if (const auto* prim = std::get_if<Primitive>(&e.geometry)) {
+        box_L.extend(primitiveBox(*prim, e.X_LE));
+        element_mesh.push_back(nullptr);
+      } else {
+        const auto& ref = std::get<MeshRef>(e.geometry);
+        const auto key = std::make_pair(
+            ref.path, std::array<double, 3>{ref.scale.x(), ref.scale.y(), ref.scale.z()});
+        auto it = meshes.find(key);
+        if (it == meshes.end()) {
+          MeshLoadOptions mo;
+          mo.keep_root_transform = options.keep_mesh_root_transform;
+          mo.scale = ref.scale;
+          TriangleMesh mesh = loadMesh(ref.path, mo);
+          if (options.center_mesh_vertices && !mesh.vertices.empty()) {
+            Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+            for (const Eigen::Vector3d& v : mesh.vertices) mean += v;
+            mean /= static_cast<double>(mesh.vertices.size());
+            for (Eigen::Vector3d& v : mesh.vertices) v -= mean;
+          }
+          it = meshes.emplace(key, std::move(mesh)).first;
+        }
+        for (const Eigen::Vector3d& v : it->second.vertices) box_L.extend(e.X_LE * v);
+        element_mesh.push_back(&it->second);
+      }
+    }
+    // One voxel of margin so conservative voxels on the boundary stay inside the universe.
+    box_L.extend(box_L.min() - Eigen::Vector3d::Constant(link_res));
+    box_L.extend(box_L.max() + Eigen::Vector3d::Constant(link_res));
+    const WorldGrid source_grid = fitGrid(box_L, link_res);
+    Octree source(source_grid);
+    for (std::size_t k = 0; k < link.collision.size(); ++k) {
+      const CollisionElement& e = link.collision[k];
+      const Octree part = element_mesh[k] ? voxelizeMesh(source_grid, *element_mesh[k], e.X_LE,
+                                                         options.rounding, options.warnings)
+                                          : voxelize(source_grid, std::get<Primitive>(e.geometry),
+                                                     e.X_LE, options.rounding);
+      source = unite(source, part);
+    }
+    LinkTree& lt = trees[static_cast<std::size_t>(i)];
+    lt.link = i;
+    // Bounding sphere of the black voxels (centre: middle of their box).
+    if (const auto b = source.bounds()) {
+      const Eigen::Vector3d lo = source_grid.cubeMin(Cube{0, b->min});
+      const Eigen::Vector3d hi = source_grid.cubeMax(Cube{0, b->max});
+      lt.center_L = (lo + hi) / 2;
+      lt.radius = (hi - lo).norm() / 2;
+      link_reach_from_origin[static_cast<std::size_t>(i)] =
+          std::max({lo.norm(), hi.norm(), lt.center_L.norm() + lt.radius});
+      // Clearance spheres: the level-kSphereLevel ancestors of the black leaves.
+      const int level = std::min(kSphereLevel, source_grid.depth());
+      std::vector<Cube> cells;
+      source.forEachBlackLeaf([&](const Cube& c) {
+        if (c.level >= level) {
+          cells.push_back(c);
+        } else {
+          const std::uint32_t mask = ~((std::uint32_t{1} << level) - 1);
+          const Cube parent{level, {c.origin.x & mask, c.origin.y & mask, c.origin.z & mask}};
+          if (cells.empty() || !(cells.back() == parent)) cells.push_back(parent);
+        }
+      });
+      std::sort(cells.begin(), cells.end(), [](const Cube& a, const Cube& c) {
+        return std::tie(a.level, a.origin.x, a.origin.y, a.origin.z) <
+               std::tie(c.level, c.origin.x, c.origin.y, c.origin.z);
+      });
+      cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
+      for (const Cube& c : cells) {
+        const Eigen::Vector3d cmin = source_grid.cubeMin(c), cmax = source_grid.cubeMax(c);
+        Eigen::Vector4d s;
+        s.head<3>() = (cmin + cmax) / 2;
+        s[3] = (cmax - cmin).norm() / 2;
+        lt.spheres_L.push_back(s);
+      }
+    }
+    lt.source = std::move(source);
+    lt.movable = std::make_unique<const MovableSource>(lt.source);
+    lr.source_internal_nodes = lt.source.internalNodeCount();
+    lr.source_black_leaves = lt.source.blackLeafCount();
+    lr.source_bytes = lt.source.bytes();
+    lr.source_depth = source_grid.depth();
+    lr.radius = lt.radius;
+    lr.build_seconds = secondsSince(t0);
+  }
+
+  // 2. What the robot can reach: bound each link's distance from the base origin along its
+  // chain (joint offsets, prismatic travel), plus its geometry's extent from its own origin.
+  std::vector<double> origin_reach(static_cast<std::size_t>(n_links), 0.0);
+  for (const Joint& j : robot_.joints()) {
+    double travel = 0;
+    if (j.type == JointType::kPrismatic) {
+      if (j.isMimic()) {
+        const Joint& m = robot_.joint(j.mimic_master);
+        travel = std::abs(j.mimic_multiplier) * std::max(std::abs(m.lower), std::abs(m.upper)) +
+                 std::abs(j.mimic_offset);
+      } else {
+        travel = std::max(std::abs(j.lower), std::abs(j.upper));
+      }
+    }
+    origin_reach[static_cast<std::size_t>(j.child_link)] =
+        origin_reach[static_cast<std::size_t>(j.parent_link)] + j.X_PJ.translation().norm() +
+        travel;
+  }
+  Eigen::AlignedBox3d base_region;
+  if (robot_.isFreeFlying()) {
+    base_region = *options.base_position_bounds;
+  } else {
+    base_region.extend(options.X_WB.translation());
+  }
+  std::vector<double> link_reach(static_cast<std::size_t>(n_links), 0.0);
+  double reach = 0;
+  for (int i = 0; i < n_links; ++i) {
+    const auto s = static_cast<std::size_t>(i);
+    link_reach[s] = origin_reach[s] + link_reach_from_origin[s] + link_res;
+    if (robot_.link(i).hasCollision()) reach = std::max(reach, link_reach[s]);
+  }
+  report_.reach_W =
+      Eigen::AlignedBox3d(base_region.min().array() - reach, base_region.max().array() + reach);
+
+  // 3. The universe: the environment where the robot can reach it.
+  Eigen::AlignedBox3d region = report_.reach_W;
+  if (const auto env_box = environment.bounds()) {
+    const Eigen::AlignedBox3d overlap = env_box->intersection(report_.reach_W);
+    if (!overlap.isEmpty()) {
+      region = overlap;
+      region.extend(overlap.min() - Eigen::Vector3d::Constant(options.resolution));
+      region.extend(overlap.max() + Eigen::Vector3d::Constant(options.resolution));
+    }
+  }
+  const WorldGrid grid = fitGrid(region, options.resolution);
+  environment_ =
+      environment.voxelize(grid, options.rounding, &report_.environment, options.warnings);
+  if (const auto b = environment_.bounds()) {
+    environment_box_W_ =
+        Eigen::AlignedBox3d(grid.cubeMin(Cube{0, b->min}), grid.cubeMax(Cube{0, b->max}));
+  }
+  report_.grid = grid;
+
+  // 4. Keep the links that can touch something: the environment, or another link.
+  std::vector<bool> in_pair(static_cast<std::size_t>(n_links), false);
+  for (const auto& [a, b] : robot_.checkedPairs()) {
+    in_pair[static_cast<std::size_t>(a)] = in_pair[static_cast<std::size_t>(b)] = true;
+  }
+  link_slot_.assign(static_cast<std::size_t>(n_links), -1);
+  for (int i = 0; i < n_links; ++i) {
+    const auto s = static_cast<std::size_t>(i);
+    LinkTree& lt = trees[s];
+    if (lt.link < 0 || lt.source.empty()) continue;
+    const Eigen::AlignedBox3d link_box(base_region.min().array() - link_reach[s],
+                                       base_region.max().array() + link_reach[s]);
+    lt.touches_environment =
+        !environment_.empty() && !link_box.intersection(environment_box_W_).isEmpty();
+    if (!lt.touches_environment && !in_pair[s]) continue;
+    link_slot_[s] = static_cast<int>(links_.size());
+    report_.links[s].modelled = true;
+    links_.push_back(std::move(lt));
+  }
+  for (const auto& [a, b] : robot_.checkedPairs()) {
+    const int sa = link_slot_[static_cast<std::size_t>(a)];
+    const int sb = link_slot_[static_cast<std::size_t>(b)];
+    if (sa >= 0 && sb >= 0) pairs_.emplace_back(sa, sb);
+  }
+  report_.self_pairs = pairs_.size();
+  report_.build_seconds = secondsSince(start);
+}
+
+CheckScratch OctreeCollisionModel::makeScratch() const {
+  CheckScratch s;
+  s.robot = robot_.makeData();
+  s.owner = id_;
+  return s;
+}
+
+bool OctreeCollisionModel::linkHitsEnvironment(const LinkTree& lt, const Eigen::Isometry3d& X_WL,
+                                               CheckerPath path, CollisionScratch& fused) const {
+  if (!lt.touches_environment) return false;
+  // Cheapest first: the link's bounding sphere against the environment's box.
+  if (distanceToBox(X_WL * lt.center_L, environment_box_W_) > lt.radius) return false;
+  if (path == CheckerPath::kFused) {
+    return collides(*lt.movable, X_WL, environment_, options_.rounding, fused);
+  }
+  return intersects(moveTree(lt.source, X_WL, environment_.grid(), options_.rounding),
+                    environment_);
+}
+
+bool OctreeCollisionModel::linksHit(const LinkTree& a, const Eigen::Isometry3d& X_WA,
+                                    const LinkTree& b, const Eigen::Isometry3d& X_WB,
+                                    CheckerPath path, CollisionScratch& fused) const {
+  const Eigen::Vector3d ca = X_WA * a.center_L, cb = X_WB * b.center_L;
+  if ((ca - cb).norm() > a.radius + b.radius) return false;
+  // B's source tree placed in A's frame, tested against A's source tree.
+  const Eigen::Isometry3d X_AB = X_WA.inverse() * X_WB;
+  if (path == CheckerPath::kFused) {
+    return collides(*b.movable, X_AB, a.source, options_.rounding, fused);
+  }
+  return intersects(moveTree(b.source, X_AB, a.source.grid(), options_.rounding), a.source);
+}
+
+bool OctreeCollisionModel::linksInCollision(CheckerPath path, CheckScratch& scratch) const {
+  for (const LinkTree& lt : links_) {
+    if (linkHitsEnvironment(lt, scratch.robot.linkPose(lt.link), path, scratch.fused)) {
+      return true;
+    }
+  }
+  for (const auto& [sa, sb] : pairs_) {
+    const LinkTree& a = links_[static_cast<std::size_t>(sa)];
+    const LinkTree& b = links_[static_cast<std::size_t>(sb)];
+    if (linksHit(a, scratch.robot.linkPose(a.link), b, scratch.robot.linkPose(b.link), path,
+                 scratch.fused)) {
+      return true;
+    }
+  }
+  return false;
+}
+
+bool OctreeCollisionModel::inCollision(const double* q, std::size_t q_size,
+                                       const Eigen::Isometry3d& X_WB, CheckerPath path,
+                                       CheckScratch& scratch) const {
+  if (scratch.owner != id_) scratch = makeScratch();
+  robot_.forwardKinematics(q, q_size, scratch.robot, robot_.isFreeFlying() ? X_WB : options_.X_WB);
+  return linksInCollision(path, scratch);
+}
+
+double OctreeCollisionModel::clearanceLowerBound(const CheckScratch& scratch) const {
+  double best = std::numeric_limits<double>::infinity();
+  for (const LinkTree& lt : links_) {
+    if (!lt.touches_environment) continue;
+    const Eigen::Isometry3d& X_WL = scratch.robot.linkPose(lt.link);
+    for (const Eigen::Vector4d& s : lt.spheres_L) {
+      // Distance to beat is best + r: a sphere can only lower the bound below `best` if its
+      // centre is nearer than that.
+      const double d =
+          distanceToBlack(environment_, X_WL * Eigen::Vector3d(s.head<3>()), best + s[3]);
+      best = std::min(best, d - s[3]);
+      if (best <= 0) return 0;
+    }
+  }
+  return best;
+}
+
+std::string CollisionModelReport::toString() const {
+  std::ostringstream out;
+  out << "universe: depth " << grid.depth() << ", " << grid.voxelSize() << " m voxels, side "
+      << grid.sideMetres() << " m, origin [" << grid.origin().transpose() << "]\n";
+  out << "environment: " << environment.internal_nodes << " internal nodes, " << environment.bytes
+      << " bytes, built in " << environment.build_seconds << " s\n";
+  for (const auto& o : environment.objects) {
+    out << "  " << o.name << ": " << o.black_leaves << " black leaves, " << o.internal_nodes
+        << " internal nodes, " << o.build_seconds << " s\n";
+  }
+  out << "links (source voxels " << link_resolution << " m):\n";
+  for (const LinkReport& l : links) {
+    out << "  " << l.name << ": ";
+    if (!l.modelled) {
+      out << "not modelled\n";
+      continue;
+    }
+    out << l.source_internal_nodes << " internal nodes, " << l.source_black_leaves
+        << " black leaves, " << l.source_bytes << " bytes, depth " << l.source_depth << ", radius "
+        << l.radius << " m, " << l.build_seconds << " s\n";
+  }
+  out << "self-collision pairs checked: " << self_pairs << "\nmodel built in " << build_seconds
+      << " s\n";
+  return out.str();
+}
+
+}  // namespace octomotion

@@ -1,0 +1,136 @@
+#include "octomotion/planner/octree_validity_checker.h"
+
+#include <cmath>
+
+#include <ompl/base/spaces/RealVectorStateSpace.h>
+#include <ompl/base/spaces/SE3StateSpace.h>
+
+namespace octomotion {
+
+namespace ob = ompl::base;
+
+namespace {
+
+// Per-thread scratch, rebuilt only when a thread switches to another model.
+struct ThreadScratch {
+  CheckScratch check;
+  std::vector<double> q;
+  Eigen::Isometry3d X_WB = Eigen::Isometry3d::Identity();
+};
+
+ThreadScratch& threadScratch(const OctreeCollisionModel& model) {
+  thread_local ThreadScratch scratch;
+  if (scratch.check.owner != model.id()) {
+    scratch.check = model.makeScratch();
+    scratch.q.assign(static_cast<std::size_t>(model.robot().variableCount()), 0.0);
+  }
+  return scratch;
+}
+
+}  // namespace
+
+ob::StateSpacePtr makeStateSpace(const RobotModel& robot,
+                                 const Eigen::AlignedBox3d* position_bounds) {
+  if (robot.isFreeFlying()) {
+    if (!position_bounds) {
+      throw InvalidArgument(robot.name() + ": a free-flying robot needs SE(3) position bounds");
+    }
+    auto space = std::make_shared<ob::SE3StateSpace>();
+    ob::RealVectorBounds bounds(3);
+    for (unsigned i = 0; i < 3; ++i) {
+      bounds.setLow(i, position_bounds->min()[i]);
+      bounds.setHigh(i, position_bounds->max()[i]);
+    }
+    space->setBounds(bounds);
+    return space;
+  }
+  const auto n = static_cast<unsigned>(robot.variableCount());
+  if (n == 0) throw InvalidArgument(robot.name() + ": the robot has no movable joint");
+  auto space = std::make_shared<ob::RealVectorStateSpace>(n);
+  ob::RealVectorBounds bounds(n);
+  for (unsigned i = 0; i < n; ++i) {
+    const Variable& v = robot.variables()[i];
+    bounds.setLow(i, v.lower);
+    bounds.setHigh(i, v.upper);
+    space->setDimensionName(i, v.name);
+  }
+  space->setBounds(bounds);
+  return space;
+}
+
+bool stateToConfiguration(const RobotModel& robot, const ob::State* state, std::vector<double>& q,
+                          Eigen::Isometry3d& X_WB) {
+  if (robot.isFreeFlying()) {
+    const auto* s = state->as<ob::SE3StateSpace::StateType>();
+    const auto& r = s->rotation();
+    const Eigen::Vector3d t(s->getX(), s->getY(), s->getZ());
+    const double norm = std::sqrt(r.w * r.w + r.x * r.x + r.y * r.y + r.z * r.z);
+    if (!t.allFinite() || !std::isfinite(norm) || norm < 1e-9) return false;
+    X_WB.linear() =
+        Eigen::Quaterniond(r.w / norm, r.x / norm, r.y / norm, r.z / norm).toRotationMatrix();
+    X_WB.translation() = t;
+    return true;
+  }
+  const double* values = state->as<ob::RealVectorStateSpace::StateType>()->values;
+  for (std::size_t i = 0; i < q.size(); ++i) {
+    if (!std::isfinite(values[i])) return false;
+    q[i] = values[i];
+  }
+  return true;
+}
+
+void configurationToState(const RobotModel& robot, const std::vector<double>& q,
+                          const Eigen::Isometry3d& X_WB, ob::State* state) {
+  if (robot.isFreeFlying()) {
+    auto* s = state->as<ob::SE3StateSpace::StateType>();
+    s->setXYZ(X_WB.translation().x(), X_WB.translation().y(), X_WB.translation().z());
+    const Eigen::Quaterniond quat(X_WB.linear());
+    s->rotation().w = quat.w();
+    s->rotation().x = quat.x();
+    s->rotation().y = quat.y();
+    s->rotation().z = quat.z();
+    return;
+  }
+  if (q.size() != static_cast<std::size_t>(robot.variableCount())) {
+    throw InvalidArgument(robot.name() + ": expected " + std::to_string(robot.variableCount()) +
+                          " joint values, got " + std::to_string(q.size()));
+  }
+  auto* s = state->as<ob::RealVectorStateSpace::StateType>();
+  for (std::size_t i = 0; i < q.size(); ++i) s->values[i] = q[i];
+}
+
+OctreeValidityChecker::OctreeValidityChecker(const ob::SpaceInformationPtr& si,
+                                             std::shared_ptr<const OctreeCollisionModel> model,
+                                             CheckerPath path)
+    : ob::StateValidityChecker(si), model_(std::move(model)), path_(path) {
+  specs_.clearanceComputationType = ob::StateValidityCheckerSpecs::BOUNDED_APPROXIMATE;
+}
+
+bool OctreeValidityChecker::check(const ob::State* state, CheckScratch& scratch) const {
+  ThreadScratch& t = threadScratch(*model_);
+  if (!si_->satisfiesBounds(state)) return false;
+  if (!stateToConfiguration(model_->robot(), state, t.q, t.X_WB)) return false;
+  model_->robot().forwardKinematics(t.q.data(), t.q.size(), scratch.robot,
+                                    model_->robot().isFreeFlying() ? t.X_WB : model_->baseMount());
+  return !model_->linksInCollision(path_, scratch);
+}
+
+bool OctreeValidityChecker::isValid(const ob::State* state) const {
+  try {
+    return check(state, threadScratch(*model_).check);
+  } catch (const std::exception&) {
+    return false;  // never throw into OMPL: an unusable state is an invalid one
+  }
+}
+
+double OctreeValidityChecker::clearance(const ob::State* state) const {
+  try {
+    CheckScratch& scratch = threadScratch(*model_).check;
+    if (!check(state, scratch)) return 0.0;
+    return model_->clearanceLowerBound(scratch);
+  } catch (const std::exception&) {
+    return 0.0;
+  }
+}
+
+}  // namespace octomotion

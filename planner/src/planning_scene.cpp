@@ -1,0 +1,213 @@
+#include "octomotion/planner/planning_scene.h"
+
+#include <cmath>
+#include <functional>
+#include <map>
+#include <ostream>
+
+#include <ompl/base/spaces/RealVectorStateSpace.h>
+#include <ompl/base/spaces/SE3StateSpace.h>
+#include <ompl/geometric/planners/est/EST.h>
+#include <ompl/geometric/planners/fmt/FMT.h>
+#include <ompl/geometric/planners/informedtrees/BITstar.h>
+#include <ompl/geometric/planners/kpiece/BKPIECE1.h>
+#include <ompl/geometric/planners/kpiece/KPIECE1.h>
+#include <ompl/geometric/planners/kpiece/LBKPIECE1.h>
+#include <ompl/geometric/planners/prm/LazyPRM.h>
+#include <ompl/geometric/planners/prm/PRM.h>
+#include <ompl/geometric/planners/prm/PRMstar.h>
+#include <ompl/geometric/planners/rrt/InformedRRTstar.h>
+#include <ompl/geometric/planners/rrt/RRT.h>
+#include <ompl/geometric/planners/rrt/RRTConnect.h>
+#include <ompl/geometric/planners/rrt/RRTstar.h>
+#include <ompl/geometric/planners/sbl/SBL.h>
+#include <ompl/util/RandomNumbers.h>
+
+#include "octomotion/octree/mesh.h"
+#include "octomotion/planner/octree_validity_checker.h"
+
+namespace octomotion {
+
+namespace ob = ompl::base;
+namespace og = ompl::geometric;
+
+double autoResolution(const RobotModel& robot, const Eigen::AlignedBox3d& scene_box,
+                      double robot_diagonal) {
+  if (!robot.isFreeFlying()) return 0.01;
+  const double scene = scene_box.isEmpty() ? 0.0 : scene_box.diagonal().norm();
+  return std::max(scene / 1024.0, robot_diagonal / 32.0);
+}
+
+ob::PlannerPtr makePlanner(const std::string& name, const ob::SpaceInformationPtr& si) {
+  using Factory = std::function<ob::PlannerPtr(const ob::SpaceInformationPtr&)>;
+  static const std::map<std::string, Factory> factories = {
+      {"RRTConnect", [](auto s) { return std::make_shared<og::RRTConnect>(s); }},
+      {"RRT", [](auto s) { return std::make_shared<og::RRT>(s); }},
+      {"RRTstar", [](auto s) { return std::make_shared<og::RRTstar>(s); }},
+      {"InformedRRTstar", [](auto s) { return std::make_shared<og::InformedRRTstar>(s); }},
+      {"BITstar", [](auto s) { return std::make_shared<og::BITstar>(s); }},
+      {"PRM", [](auto s) { return std::make_shared<og::PRM>(s); }},
+      {"PRMstar", [](auto s) { return std::make_shared<og::PRMstar>(s); }},
+      {"LazyPRM", [](auto s) { return std::make_shared<og::LazyPRM>(s); }},
+      {"FMT", [](auto s) { return std::make_shared<og::FMT>(s); }},
+      {"KPIECE1", [](auto s) { return std::make_shared<og::KPIECE1>(s); }},
+      {"BKPIECE1", [](auto s) { return std::make_shared<og::BKPIECE1>(s); }},
+      {"LBKPIECE1", [](auto s) { return std::make_shared<og::LBKPIECE1>(s); }},
+      {"EST", [](auto s) { return std::make_shared<og::EST>(s); }},
+      {"SBL", [](auto s) { return std::make_shared<og::SBL>(s); }},
+  };
+  const auto it = factories.find(name);
+  if (it == factories.end()) {
+    std::string known;
+    for (const auto& kv : factories) known += (known.empty() ? "" : ", ") + kv.first;
+    throw InvalidArgument("planner: unknown OMPL planner '" + name + "' (known: " + known + ")");
+  }
+  return it->second(si);
+}
+
+PlanningScene loadPlanningScene(const std::string& scene_path, const SceneOverrides& overrides,
+                                const WarningSink& warnings) {
+  PlanningScene scene;
+  SceneSpec& spec = scene.spec;
+  spec = loadScene(scene_path);
+  if (overrides.auto_resolution) spec.octree.resolution.reset();
+  if (overrides.resolution) spec.octree.resolution = *overrides.resolution;
+  if (overrides.rounding) spec.octree.rounding = *overrides.rounding;
+  if (overrides.checker) spec.octree.checker = checkerName(*overrides.checker);
+  if (overrides.planner) spec.problem.planner = *overrides.planner;
+  if (overrides.time) spec.problem.time = *overrides.time;
+  if (overrides.seed) spec.problem.seed = *overrides.seed;
+  // Seed before OMPL creates any random number generator.
+  if (spec.problem.seed) ompl::RNG::setSeed(*spec.problem.seed);
+
+  // The robot.
+  std::optional<RobotModel> robot;
+  double robot_diagonal = 0;
+  if (!spec.robot.urdf.empty()) {
+    RobotModelOptions options;
+    options.package_paths = spec.robot.package_paths;
+    options.package_paths.insert(options.package_paths.end(), overrides.package_paths.begin(),
+                                 overrides.package_paths.end());
+    options.warnings = warnings;
+    robot = RobotModel::fromUrdfFile(spec.robot.urdf, options);
+    if (!spec.robot.srdf.empty()) robot->loadSrdfFile(spec.robot.srdf);
+  } else {
+    robot = RobotModel::fromMesh(spec.robot.mesh);
+    MeshLoadOptions mo;
+    mo.keep_root_transform = spec.robot.keep_mesh_root_transform;
+    const TriangleMesh mesh = loadMesh(spec.robot.mesh, mo);
+    Eigen::AlignedBox3d box;
+    for (const Eigen::Vector3d& v : mesh.vertices) box.extend(v);
+    robot_diagonal = box.diagonal().norm();
+  }
+
+  // The environment, and the region the problem lives in.
+  const EnvironmentGeometry environment = EnvironmentGeometry::load(spec.environment, warnings);
+  Eigen::AlignedBox3d scene_box;
+  if (const auto b = environment.bounds()) scene_box = *b;
+  if (robot->isFreeFlying() && !spec.problem.bounds) {
+    // OMPL.app infers the bounds from the environment when a problem gives none.
+    if (scene_box.isEmpty()) {
+      throw FileError(spec.path,
+                      "problem.bounds: missing, and there is no environment to infer "
+                      "them from");
+    }
+    spec.problem.bounds = scene_box;
+  }
+  if (spec.problem.bounds) scene_box.extend(*spec.problem.bounds);
+  if (!spec.octree.resolution) {
+    spec.octree.resolution = autoResolution(*robot, scene_box, robot_diagonal);
+  }
+
+  CollisionModelOptions options;
+  options.resolution = *spec.octree.resolution;
+  options.link_resolution = spec.octree.link_resolution;
+  options.rounding = spec.octree.rounding;
+  options.base_position_bounds = spec.problem.bounds;
+  options.keep_mesh_root_transform = spec.robot.keep_mesh_root_transform;
+  options.center_mesh_vertices = spec.robot.center_mesh_vertices;
+  options.warnings = warnings;
+  const bool free_flying = robot->isFreeFlying();
+  scene.fcl_model = std::make_shared<const FclCollisionModel>(
+      *robot, environment, options.keep_mesh_root_transform, options.center_mesh_vertices);
+  scene.model =
+      std::make_shared<const OctreeCollisionModel>(std::move(*robot), environment, options);
+  const RobotModel& model_robot = scene.model->robot();
+
+  // OMPL.
+  const Eigen::AlignedBox3d* bounds = free_flying ? &*spec.problem.bounds : nullptr;
+  scene.setup = std::make_shared<og::SimpleSetup>(makeStateSpace(model_robot, bounds));
+  const ob::SpaceInformationPtr& si = scene.setup->getSpaceInformation();
+  scene.checker = spec.octree.checker;
+  if (scene.checker == "fcl") {
+    scene.setup->setStateValidityChecker(std::make_shared<FclValidityChecker>(si, scene.fcl_model));
+  } else if (scene.checker == "fcl-octomap") {
+    throw InvalidArgument("checker 'fcl-octomap' is not built into this version of octomotion yet");
+  } else {
+    scene.setup->setStateValidityChecker(std::make_shared<OctreeValidityChecker>(
+        si, scene.model, checkerPathFromName(scene.checker)));
+  }
+  auto toState = [&](const StateSpec& s, const char* field) {
+    ob::ScopedState<> state(si);
+    if (free_flying) {
+      if (!s.pose) throw FileError(spec.path, std::string(field) + ": a rigid body needs a pose");
+      configurationToState(model_robot, {}, *s.pose, state.get());
+    } else {
+      if (s.joints.size() != static_cast<std::size_t>(model_robot.variableCount())) {
+        throw FileError(spec.path, std::string(field) + ": expected " +
+                                       std::to_string(model_robot.variableCount()) +
+                                       " joint values for " + model_robot.name() + ", got " +
+                                       std::to_string(s.joints.size()));
+      }
+      configurationToState(model_robot, s.joints, Eigen::Isometry3d::Identity(), state.get());
+    }
+    return state;
+  };
+  if (spec.problem.start && spec.problem.goal) {
+    scene.setup->setStartAndGoalStates(toState(*spec.problem.start, "problem.start"),
+                                       toState(*spec.problem.goal, "problem.goal"));
+  }
+  scene.setup->setPlanner(makePlanner(spec.problem.planner, si));
+  return scene;
+}
+
+PlanResult plan(PlanningScene& scene, double interpolation) {
+  PlanResult result;
+  og::SimpleSetup& ss = *scene.setup;
+  ss.setup();
+  const ob::PlannerStatus status = ss.solve(scene.spec.problem.time);
+  result.seconds = ss.getLastPlanComputationTime();
+  result.solved = status == ob::PlannerStatus::EXACT_SOLUTION;
+  if (!result.solved) return result;
+  ss.simplifySolution();
+  result.path = std::make_shared<og::PathGeometric>(ss.getSolutionPath());
+  if (interpolation > 0) {
+    const double length = result.path->length();
+    result.path->interpolate(static_cast<unsigned>(std::ceil(length / interpolation)) + 1);
+  } else {
+    result.path->interpolate();
+  }
+  return result;
+}
+
+void writePath(const PlanningScene& scene, const og::PathGeometric& path, std::ostream& out) {
+  const RobotModel& robot = scene.model->robot();
+  std::vector<double> q(static_cast<std::size_t>(robot.variableCount()));
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  out.precision(17);
+  for (unsigned i = 0; i < path.getStateCount(); ++i) {
+    if (!stateToConfiguration(robot, path.getState(i), q, X)) {
+      throw Error("writePath: state " + std::to_string(i) + " is not finite");
+    }
+    if (robot.isFreeFlying()) {
+      const Eigen::Quaterniond r(X.linear());
+      out << X.translation().x() << ' ' << X.translation().y() << ' ' << X.translation().z() << ' '
+          << r.x() << ' ' << r.y() << ' ' << r.z() << ' ' << r.w() << '\n';
+    } else {
+      for (std::size_t k = 0; k < q.size(); ++k) out << (k ? " " : "") << q[k];
+      out << '\n';
+    }
+  }
+}
+
+}  // namespace octomotion

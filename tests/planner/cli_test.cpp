@@ -1,0 +1,128 @@
+// The octomotion command, run as a user would: results on stdout, one-line errors and a non-zero
+// status on bad input.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+
+struct CliRun {
+  int status;
+  std::string out, err;
+};
+
+CliRun run(const std::string& args) {
+  const fs::path dir = fs::temp_directory_path() / "octomotion_cli_test";
+  fs::create_directories(dir);
+  const std::string out = (dir / "stdout").string(), err = (dir / "stderr").string();
+  const std::string cmd = std::string(OCTOMOTION_CLI) + " " + args + " >" + out + " 2>" + err;
+  const int raw = std::system(cmd.c_str());
+  auto slurp = [](const std::string& p) {
+    std::ifstream in(p);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+  };
+  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(out), slurp(err)};
+}
+
+std::string scene(const char* name) {
+  return std::string(OCTOMOTION_SOURCE_DIR) + "/robots/scenes/" + name;
+}
+
+std::vector<std::string> lines(const std::string& text) {
+  std::vector<std::string> out;
+  std::stringstream s(text);
+  for (std::string l; std::getline(s, l);) out.push_back(l);
+  return out;
+}
+
+TEST(Cli, InfoDescribesWhatIsModelled) {
+  const CliRun r = run("info " + scene("bookshelf.yaml") + " --resolution 0.02");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("resolution: 0.02 m"));
+  EXPECT_THAT(r.out, HasSubstr("universe: depth"));
+  EXPECT_THAT(r.out, HasSubstr("joint order: joint1 joint2 joint3 joint4 joint5 joint6 joint7 "
+                               "finger_joint1"));
+  EXPECT_THAT(r.out, HasSubstr("hand: "));
+  EXPECT_THAT(r.out, HasSubstr("self-collision pairs checked: "));
+}
+
+TEST(Cli, CheckReadsColumnsByName) {
+  const fs::path csv = fs::temp_directory_path() / "octomotion_cli_states.csv";
+  {
+    std::ofstream out(csv);
+    // Columns in another order than the joints, plus an extra one that is ignored.
+    out << "finger_joint1,joint7,joint6,joint5,joint4,joint3,joint2,joint1,comment\n"
+        << "0,0,0,0,0,0,0,0,upright\n"                                // free
+        << "0.02,1.199,-0.618,-0.815,-1.4,1.442,-0.502,-2.16,goal\n"  // the scene's goal: free
+        << "0,0,1.5,0,0,0,1.6,0,into the shelf\n"                     // leans into the shelf
+        << "0,0,0,0,0,0,nan,0,nan\n"                                  // NaN: invalid
+        << "0,0,0,0,0,0,9,0,beyond the limit\n";                      // out of bounds: invalid
+  }
+  const CliRun r = run("check " + scene("bookshelf.yaml") + " --states " + csv.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto rows = lines(r.out);
+  ASSERT_EQ(rows.size(), 6u) << r.out;
+  EXPECT_EQ(rows[0], "index,valid,time_ns");
+  const char* expected[] = {"0,1,", "1,1,", "2,0,", "3,0,", "4,0,"};
+  for (int i = 0; i < 5; ++i) EXPECT_EQ(rows[i + 1].rfind(expected[i], 0), 0u) << rows[i + 1];
+
+  {
+    std::ofstream out(csv);
+    out << "joint1,joint2\n0,0\n";
+  }
+  const CliRun bad = run("check " + scene("bookshelf.yaml") + " --states " + csv.string());
+  EXPECT_NE(bad.status, 0);
+  EXPECT_THAT(bad.err, HasSubstr("missing column 'joint3'"));
+  EXPECT_EQ(lines(bad.err).size(), 2u);  // the "loaded" progress line and the error
+  fs::remove(csv);
+}
+
+TEST(Cli, PlanWritesOmplPathFormat) {
+  const fs::path path = fs::temp_directory_path() / "octomotion_cli_path.txt";
+  const CliRun r =
+      run("plan " + scene("narrow_passage.yaml") + " --time 60 --seed 3 --out " + path.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("solved in"));
+  std::ifstream in(path);
+  std::vector<std::array<double, 7>> states;
+  for (std::string line; std::getline(in, line);) {
+    std::stringstream s(line);
+    std::array<double, 7> v{};
+    for (double& x : v) ASSERT_TRUE(static_cast<bool>(s >> x)) << line;
+    states.push_back(v);
+  }
+  ASSERT_GE(states.size(), 2u);
+  // x y z qx qy qz qw: starts at the scene's start (rpy 90 degrees about x) and ends at the goal.
+  EXPECT_NEAR(states.front()[0], -0.7, 1e-9);
+  EXPECT_NEAR(std::abs(states.front()[3]), std::sqrt(0.5), 1e-9);
+  EXPECT_NEAR(states.back()[0], 0.4, 1e-9);
+  EXPECT_NEAR(std::abs(states.back()[6]), 1.0, 1e-9);
+  fs::remove(path);
+}
+
+TEST(Cli, BadInputIsOneLineAndNonZero) {
+  for (const std::string& args :
+       {std::string("plan /no/such/scene.yaml"), std::string("info"),
+        std::string("frobnicate ") + scene("bookshelf.yaml"),
+        "info " + scene("bookshelf.yaml") + " --rounding sideways",
+        "info " + scene("bookshelf.yaml") + " --resolution -1",
+        "info " + scene("bookshelf.yaml") + " --checker bullet",
+        "plan " + scene("bookshelf.yaml") + " --time", "check " + scene("bookshelf.yaml")}) {
+    const CliRun r = run(args);
+    EXPECT_NE(r.status, 0) << args;
+    EXPECT_EQ(lines(r.err).size(), 1u) << args << "\n" << r.err;
+    EXPECT_THAT(r.err, HasSubstr("octomotion: error: ")) << args;
+  }
+}
+
+}  // namespace
