@@ -16,7 +16,7 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 build=${OCTOMOTION_BUILD_DIR:-$root/build}
 
 packages=(build-essential cmake ninja-build pkg-config clang-format
-  libeigen3-dev libompl-dev libfcl-dev liburdfdom-dev libassimp-dev liboctomap-dev
+  libeigen3-dev libompl-dev libfcl-dev liburdfdom-dev libtinyxml-dev libassimp-dev liboctomap-dev
   libboost-serialization-dev libboost-filesystem-dev libboost-system-dev
   libyaml-cpp-dev libnanoflann-dev libgtest-dev libgmock-dev libbenchmark-dev)
 missing=()

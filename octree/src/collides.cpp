@@ -49,12 +49,11 @@ IntBox fillNode(const Octree& t, std::vector<Node>& out, std::uint32_t i, const 
       grow(fillNode(t, out, n.childIndex(k), c));
     }
   }
-  Node& mm = out[i];  // `out` is not resized during the recursion, but keep it obvious
-  for (int a = 0; a < 3; ++a) {
+  for (int a = 0; a < 3; ++a) {  // `out` is never resized, so `m` is still valid
     const double lo = static_cast<double>(box.lo[a]);
     const double hi = static_cast<double>(box.hi[a]) + 1.0;
-    mm.centre[a] = 0.5 * (lo + hi);
-    mm.half[a] = 0.5 * (hi - lo);
+    m.centre[a] = 0.5 * (lo + hi);
+    m.half[a] = 0.5 * (hi - lo);
   }
   return box;
 }

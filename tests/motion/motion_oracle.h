@@ -16,11 +16,17 @@
 namespace octomotion::test {
 
 struct OracleCube {
-  Eigen::Vector3d u_c;  // centre, source grid coordinates
-  double half_src;      // half side, source voxels
-  Eigen::Vector3d g;    // moved centre, target grid coordinates
-  Eigen::Matrix3d R;    // axes
-  double hs;            // half side, target voxels
+  Eigen::Vector3d u_c;     // centre, source grid coordinates
+  double half_src;         // half side, source voxels
+  Eigen::Vector3d g;       // moved centre, target grid coordinates
+  Eigen::Matrix3d R;       // axes
+  double hs;               // half side, target voxels
+  Eigen::Isometry3d X_SW;  // inverse pose
+  // Separating axes of the unit voxel box and the moved cube (edge axes normalised, skipped
+  // when nearly degenerate: parallel edges), with both half-projections.
+  Eigen::Vector3d axes[15];
+  double rv[15], rc[15];
+  int n_axes = 0;
 };
 
 inline std::vector<OracleCube> oracleCubes(const Octree& src, const Eigen::Isometry3d& X,
@@ -35,36 +41,39 @@ inline std::vector<OracleCube> oracleCubes(const Octree& src, const Eigen::Isome
     o.g = target.toGrid(X * src.grid().toWorld(o.u_c));
     o.R = X.linear();
     o.hs = h * s;
+    o.X_SW = X.inverse();
+    auto add = [&o](const Eigen::Vector3d& L) {
+      o.axes[o.n_axes] = L;
+      o.rv[o.n_axes] = 0.5 * L.cwiseAbs().sum();
+      o.rc[o.n_axes] = o.hs * (o.R.transpose() * L).cwiseAbs().sum();
+      ++o.n_axes;
+    };
+    for (int i = 0; i < 3; ++i) add(Eigen::Vector3d::Unit(i));
+    for (int j = 0; j < 3; ++j) add(o.R.col(j));
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) {
+        const Eigen::Vector3d L = Eigen::Vector3d::Unit(i).cross(o.R.col(j));
+        if (L.norm() >= 1e-6) add(L.normalized());
+      }
     out.push_back(o);
   });
   return out;
 }
 
 // Target voxel v against one moved cube, per the documented rule.
-inline bool oracleAccepts(const Octree& src, const Eigen::Isometry3d& X, const WorldGrid& target,
-                          const OracleCube& c, const Voxel& v, Rounding rounding) {
+inline bool oracleAccepts(const Octree& src, const Eigen::Isometry3d& /*X_WS*/,
+                          const WorldGrid& target, const OracleCube& c, const Voxel& v,
+                          Rounding rounding) {
   const double tol = kMotionTieTolerance;
   if (rounding == Rounding::kCenter) {
-    const Eigen::Vector3d p_S = X.inverse() * target.voxelCenter(v);
+    const Eigen::Vector3d p_S = c.X_SW * target.voxelCenter(v);
     const Eigen::Vector3d u = src.grid().toGrid(p_S);
     const double tol_src = tol * target.voxelSize() / src.grid().voxelSize();
     return ((u - c.u_c).cwiseAbs().array() <= c.half_src + tol_src).all();
   }
-  // Separating axes of the unit voxel box and the moved cube; edge axes normalised, skipped
-  // when nearly degenerate (parallel edges).
   const Eigen::Vector3d d = Eigen::Vector3d(v.x + 0.5, v.y + 0.5, v.z + 0.5) - c.g;
-  std::vector<Eigen::Vector3d> axes;
-  for (int i = 0; i < 3; ++i) axes.push_back(Eigen::Vector3d::Unit(i));
-  for (int j = 0; j < 3; ++j) axes.push_back(c.R.col(j));
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) {
-      const Eigen::Vector3d L = Eigen::Vector3d::Unit(i).cross(c.R.col(j));
-      if (L.norm() >= 1e-6) axes.push_back(L.normalized());
-    }
-  for (const Eigen::Vector3d& L : axes) {
-    const double rv = 0.5 * L.cwiseAbs().sum();
-    const double rc = c.hs * (c.R.transpose() * L).cwiseAbs().sum();
-    if (!(std::abs(L.dot(d)) < rv + rc - tol)) return false;
+  for (int a = 0; a < c.n_axes; ++a) {
+    if (!(std::abs(c.axes[a].dot(d)) < c.rv[a] + c.rc[a] - tol)) return false;
   }
   return true;
 }

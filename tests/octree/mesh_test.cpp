@@ -65,14 +65,43 @@ bool rayHits(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const Eigen::Ve
   return e2.dot(q) / det > 0;
 }
 
-bool insideOracle(const TriangleMesh& mesh, const Eigen::Vector3d& p) {
-  const Eigen::Vector3d d = Eigen::Vector3d(0.5477, 0.3211, 0.7734).normalized();
-  bool odd = false;
-  for (const auto& t : mesh.triangles) {
-    if (rayHits(p, d, mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]])) odd = !odd;
+// The oracle's ray direction, and a basis of the plane across it: a triangle can only be hit
+// by the ray from p if its projection's bounding box on that plane contains p's projection.
+const Eigen::Vector3d kRayDir = Eigen::Vector3d(0.5477, 0.3211, 0.7734).normalized();
+const Eigen::Vector3d kAcross1 = kRayDir.unitOrthogonal();
+const Eigen::Vector3d kAcross2 = kRayDir.cross(kAcross1);
+
+class InsideOracle {
+ public:
+  explicit InsideOracle(const TriangleMesh& mesh) : mesh_(mesh) {
+    for (const auto& t : mesh.triangles) {
+      Eigen::Vector4d b(INFINITY, -INFINITY, INFINITY, -INFINITY);  // (min1, max1, min2, max2)
+      for (std::uint32_t i : t) {
+        const double u = kAcross1.dot(mesh.vertices[i]), v = kAcross2.dot(mesh.vertices[i]);
+        b = Eigen::Vector4d(std::min(b[0], u), std::max(b[1], u), std::min(b[2], v),
+                            std::max(b[3], v));
+      }
+      boxes_.push_back(b);
+    }
   }
-  return odd;
-}
+  bool operator()(const Eigen::Vector3d& p) const {
+    const double u = kAcross1.dot(p), v = kAcross2.dot(p);
+    bool odd = false;
+    for (std::size_t k = 0; k < boxes_.size(); ++k) {
+      const Eigen::Vector4d& b = boxes_[k];
+      if (u < b[0] - 1e-9 || u > b[1] + 1e-9 || v < b[2] - 1e-9 || v > b[3] + 1e-9) continue;
+      const auto& t = mesh_.triangles[k];
+      if (rayHits(p, kRayDir, mesh_.vertices[t[0]], mesh_.vertices[t[1]], mesh_.vertices[t[2]])) {
+        odd = !odd;
+      }
+    }
+    return odd;
+  }
+
+ private:
+  const TriangleMesh& mesh_;
+  std::vector<Eigen::Vector4d> boxes_;
+};
 
 // Closest point on triangle abc to p (Ericson, Real-Time Collision Detection §5.1.5).
 Eigen::Vector3d closestOnTriangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
@@ -139,33 +168,44 @@ std::size_t compareWithOracle(const WorldGrid& grid, const TriangleMesh& mesh_W,
   const DenseGrid dense = DenseGrid::fromTree(tree);
   const std::uint32_t side = grid.sideVoxels();
   const double vs = grid.voxelSize();
-  // Triangles near each voxel: bounding boxes within one voxel.
-  std::vector<Eigen::Vector3d> tlo, thi;
-  for (const auto& t : mesh_W.triangles) {
+  // Triangles near each voxel (bounding box within one voxel), listed per voxel.
+  auto index = [&](std::uint32_t x, std::uint32_t y, std::uint32_t z) {
+    return (std::size_t{z} * side + y) * side + x;
+  };
+  std::vector<std::vector<std::uint32_t>> near_lists(std::size_t{side} * side * side);
+  for (std::uint32_t i = 0; i < mesh_W.triangles.size(); ++i) {
+    const auto& t = mesh_W.triangles[i];
     const Eigen::Vector3d &a = mesh_W.vertices[t[0]], &b = mesh_W.vertices[t[1]],
                           &c = mesh_W.vertices[t[2]];
-    tlo.push_back(a.cwiseMin(b).cwiseMin(c));
-    thi.push_back(a.cwiseMax(b).cwiseMax(c));
+    const Eigen::Vector3d lo = grid.toGrid(a.cwiseMin(b).cwiseMin(c)).array() - 1.0;
+    const Eigen::Vector3d hi = grid.toGrid(a.cwiseMax(b).cwiseMax(c)).array() + 1.0;
+    std::uint32_t from[3], to[3];
+    bool outside = false;
+    for (int k = 0; k < 3; ++k) {
+      const double l = std::max(std::floor(lo[k]) - 1, 0.0),
+                   h = std::min(std::floor(hi[k]) + 1, side - 1.0);
+      outside |= l > h;
+      from[k] = static_cast<std::uint32_t>(l);
+      to[k] = static_cast<std::uint32_t>(std::max(h, 0.0));
+    }
+    if (outside) continue;
+    for (std::uint32_t z = from[2]; z <= to[2]; ++z)
+      for (std::uint32_t y = from[1]; y <= to[1]; ++y)
+        for (std::uint32_t x = from[0]; x <= to[0]; ++x) near_lists[index(x, y, z)].push_back(i);
   }
   std::size_t unknown = 0, mismatches = 0;
-  std::vector<std::uint32_t> near;
+  const InsideOracle insideOracle(mesh_W);
+  const Eigen::Vector3d slack = Eigen::Vector3d::Constant(vs);
   for (std::uint32_t z = 0; z < side; ++z)
     for (std::uint32_t y = 0; y < side; ++y)
       for (std::uint32_t x = 0; x < side; ++x) {
         const Cube c{0, {x, y, z}};
         const Eigen::Vector3d lo = grid.cubeMin(c), hi = grid.cubeMax(c);
         const Eigen::Vector3d centre = 0.5 * (lo + hi);
-        near.clear();
-        const Eigen::Vector3d slack = Eigen::Vector3d::Constant(vs);
-        for (std::uint32_t i = 0; i < tlo.size(); ++i) {
-          if ((tlo[i].array() <= (hi + slack).array()).all() &&
-              (thi[i].array() >= (lo - slack).array()).all()) {
-            near.push_back(i);
-          }
-        }
+        const std::vector<std::uint32_t>& near = near_lists[index(x, y, z)];
         Truth truth;
         if (rounding == Rounding::kCenter && solid) {
-          truth = insideOracle(mesh_W, centre) ? Truth::kYes : Truth::kNo;
+          truth = insideOracle(centre) ? Truth::kYes : Truth::kNo;
           // A centre within 1e-9 voxel of the surface is a tie the two rays may break apart.
           if (!near.empty() && surfaceTouchesBox(mesh_W, near, centre - slack * 1e-9,
                                                  centre + slack * 1e-9, 0) != Truth::kNo) {
@@ -173,7 +213,7 @@ std::size_t compareWithOracle(const WorldGrid& grid, const TriangleMesh& mesh_W,
           }
         } else {
           truth = near.empty() ? Truth::kNo : surfaceTouchesBox(mesh_W, near, lo, hi);
-          if (truth != Truth::kYes && solid && insideOracle(mesh_W, centre)) truth = Truth::kYes;
+          if (truth != Truth::kYes && solid && insideOracle(centre)) truth = Truth::kYes;
         }
         if (truth == Truth::kUnknown) {
           ++unknown;
@@ -282,8 +322,7 @@ TEST(VoxelizeMesh, SolidFillMatchesBruteForceOracle) {
   std::size_t unknown = 0, voxels = 0;
   for (int depth = 3; depth <= 6; ++depth) {
     const WorldGrid grid(Eigen::Vector3d(-2, -2, -2), 4.0 / (1 << depth), depth);
-    // Depth 6 only for one mesh: the oracle casts a ray against every triangle per voxel.
-    for (std::size_t m = 0; m < (depth < 6 ? meshes.size() : 1); ++m) {
+    for (std::size_t m = 0; m < meshes.size(); ++m) {
       const Eigen::Isometry3d X = randomPose(grid, rng, 0.45, 0.55);
       const TriangleMesh mesh_W = transformed(meshes[m], X);
       for (Rounding r : {Rounding::kConservative, Rounding::kCenter}) {
@@ -620,8 +659,8 @@ TEST_F(MeshFiles, BadFilesThrowFileErrorNamingTheFile) {
     }
   };
   expectFileError(path("missing.stl"), "cannot open");
-  expectFileError(writeText("garbage.stl", std::string("\x01\x02 this is not a mesh \xff\xfe", 26)),
-                  "");
+  static const char kGarbage[] = "\x01\x02 this is not a mesh \xff\xfe";
+  expectFileError(writeText("garbage.stl", std::string(kGarbage, sizeof kGarbage - 1)), "");
   expectFileError(writeText("garbage.dae", "<COLLADA><broken"), "");
   expectFileError(writeText("empty.obj", "# nothing here\n"), "");
   expectFileError(writeText("zero.stl", ""), "");

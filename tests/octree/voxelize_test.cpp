@@ -104,12 +104,14 @@ void checkAgainstBruteForce(const WorldGrid& grid, const Primitive& shape,
       for (std::uint32_t x = 0; x < side; ++x) {
         const Voxel v{x, y, z};
         const bool black = dense.get(v);
-        if (black != voxelIsBlack(grid, shape, X_WS, rounding, v)) {
+        const Eigen::Vector3d centre = grid.voxelCenter(v);
+        const double f = boundDistance(shape, X_SW * centre);
+        // The library's own rule, exactly, wherever it could be in doubt (within two voxels of
+        // the surface); further away the independent check below is exact anyway.
+        if (std::abs(f) < 2 * kVoxel && black != voxelIsBlack(grid, shape, X_WS, rounding, v)) {
           if (++mismatches < 5) ADD_FAILURE() << "voxel " << x << "," << y << "," << z;
         }
         // Independent check. Cheap rejection first: the shape's bound at the centre is far.
-        const Eigen::Vector3d centre = grid.voxelCenter(v);
-        const double f = boundDistance(shape, X_SW * centre);
         Truth truth;
         if (rounding == Rounding::kCenter) {
           truth = std::abs(f) < 1e-12 ? Truth::kUnknown : (f < 0 ? Truth::kYes : Truth::kNo);
@@ -137,7 +139,7 @@ TEST(Voxelize, PrimitivesMatchBruteForceBothModes) {
   std::size_t undecided = 0, checked_voxels = 0;
   for (int depth = 3; depth <= 7; ++depth) {
     const WorldGrid grid = gridOfDepth(depth);
-    const int trials = depth <= 5 ? 12 : depth == 6 ? 6 : 2;
+    const int trials = depth <= 5 ? 16 : depth == 6 ? 8 : 4;
     for (int trial = 0; trial < trials; ++trial) {
       const Primitive shape = randomPrimitive(grid, rng, trial);
       const Eigen::Isometry3d X_WS = randomPose(grid, rng);

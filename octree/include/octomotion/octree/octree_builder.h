@@ -44,6 +44,9 @@ class OctreeBuilder {
   // its colour to the parent's mask. Returns true when it condensed.
   bool condense(std::uint32_t parent, int k);
 
+  // Room for this many nodes without reallocating (a hint; building works without it).
+  void reserve(std::size_t nodes) { nodes_.reserve(nodes); }
+
   std::size_t liveNodeCount() const { return live_; }
   std::size_t peakNodeCount() const { return peak_; }
 
