@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # One entry point for a fresh Debian 12 machine: installs the Debian packages octomotion needs
 # (those missing only), configures a Release build with warnings as errors, builds, then
-#   demo  runs the main demo planning problem,
+#   demo  runs the main demo planning problem (demos/plan_arm: octo7 reaches into a bookshelf),
 #   test  runs the whole test suite through ctest.
 # Environment: OCTOMOTION_BUILD_DIR (default build), OCTOMOTION_CMAKE_ARGS (extra cmake args),
 #              OCTOMOTION_CTEST_ARGS (extra ctest args, e.g. "-L motion").
@@ -38,7 +38,7 @@ cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DOCTOMOTION_WE
 cmake --build "$build" -j "$(nproc)"
 
 if [[ $mode == demo ]]; then
-  exec "$build/demos/octree_tour"
+  cd "$root" && exec "$build/demos/plan_arm"
 else
   # shellcheck disable=SC2086
   cd "$build" && exec ctest --output-on-failure -j "$(nproc)" ${OCTOMOTION_CTEST_ARGS:-}

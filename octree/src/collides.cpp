@@ -58,6 +58,8 @@ IntBox fillNode(const Octree& t, std::vector<Node>& out, std::uint32_t i, const 
   return box;
 }
 
+constexpr std::size_t kCoreLeaves = 3;
+
 class Query {
  public:
   Query(const MotionFrame& f, const MovableSource& src, const Octree& env, Rounding rounding,
@@ -70,7 +72,8 @@ class Query {
         rounding_(rounding),
         margin_(motion_detail::rejectMargin(rounding)),
         scratch_(scratch),
-        witness_(witness) {}
+        witness_(witness),
+        core_(src.coreLeaves()) {}
 
   bool run() {
     if (env_root_ == Color::kWhite) return false;
@@ -97,6 +100,21 @@ class Query {
       cells[a][0] = lo[a] >> la;
       cells[a][1] = hi[a] >> la;
       count[a] = cells[a][1] != cells[a][0] ? 2 : 1;
+    }
+    // Cheap first guess: the voxel at the moved centre of each of the largest leaves.
+    for (const Cube& leaf : core_) {
+      double u[3], g[3];
+      motion_detail::cubeCentre(leaf, u);
+      motion_detail::movePoint(f_, u, g);
+      if (!(g[0] >= 0 && g[1] >= 0 && g[2] >= 0 && g[0] < side && g[1] < side && g[2] < side)) {
+        continue;
+      }
+      const Voxel v{static_cast<std::uint32_t>(g[0]), static_cast<std::uint32_t>(g[1]),
+                    static_cast<std::uint32_t>(g[2])};
+      if (locate(Cube{0, v}) == kBlackCell &&
+          probe(g, motion_detail::movedHalf(f_, leaf.level), Cube{0, v})) {
+        return true;
+      }
     }
     out_ = &scratch_.items;
     out_->clear();
@@ -428,6 +446,7 @@ class Query {
   double margin_;
   CollisionScratch& scratch_;
   Cube* witness_;
+  const std::vector<Cube>& core_;
   std::vector<CollisionItem>* out_ = nullptr;
 };
 
@@ -448,6 +467,33 @@ MovableSource::MovableSource(const Octree& source)
     n.black = 1;
     n.level = static_cast<std::int8_t>(grid_.depth() + 1);
     nodes_.push_back(n);
+  }
+  // Core leaves: among the largest leaves (top two levels), greedily the farthest apart, so
+  // the first guesses cover the object's length.
+  std::vector<Cube> leaves = source.blackLeaves();
+  int top = -1;
+  for (const Cube& c : leaves) top = std::max(top, c.level);
+  std::vector<Cube> candidates;
+  for (const Cube& c : leaves) {
+    if (c.level >= top - 1) candidates.push_back(c);
+  }
+  auto centre = [](const Cube& c) {
+    double u[3];
+    motion_detail::cubeCentre(c, u);
+    return Eigen::Vector3d(u[0], u[1], u[2]);
+  };
+  while (core_.size() < kCoreLeaves && core_.size() < candidates.size()) {
+    double best = -1;
+    Cube pick = candidates.front();
+    for (const Cube& c : candidates) {
+      double nearest = core_.empty() ? static_cast<double>(c.level) : 1e300;
+      for (const Cube& k : core_) nearest = std::min(nearest, (centre(c) - centre(k)).norm());
+      if (nearest > best) {
+        best = nearest;
+        pick = c;
+      }
+    }
+    core_.push_back(pick);
   }
 }
 

@@ -64,11 +64,14 @@ class MovableSource {
     }
   };
   const std::vector<Node>& nodes() const { return nodes_; }
+  // The largest black leaves (deep inside the object): tried first by every query.
+  const std::vector<Cube>& coreLeaves() const { return core_; }
 
  private:
   WorldGrid grid_;
   Color root_;
   std::vector<Node> nodes_;
+  std::vector<Cube> core_;
 };
 
 // Per-thread reusable buffers of the fused query: after the first few queries, collides()
