@@ -286,4 +286,13 @@ TriangleMesh torusMesh(double R, double r, int segments, int sides) {
   return mesh;
 }
 
+Eigen::Vector3d centerOnVertexMean(TriangleMesh& mesh) {
+  if (mesh.vertices.empty()) return Eigen::Vector3d::Zero();
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& v : mesh.vertices) mean += v;
+  mean /= static_cast<double>(mesh.vertices.size());
+  for (Eigen::Vector3d& v : mesh.vertices) v -= mean;
+  return mean;
+}
+
 }  // namespace octomotion

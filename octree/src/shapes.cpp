@@ -42,4 +42,22 @@ bool containsPoint(const Primitive& shape, const Eigen::Vector3d& p_S) {
          p_S.x() * p_S.x() + p_S.y() * p_S.y() <= cylinder.radius * cylinder.radius;
 }
 
+Eigen::AlignedBox3d boundingBox(const Primitive& shape, const Eigen::Isometry3d& X_WS) {
+  if (const auto* ball = std::get_if<Sphere>(&shape)) {
+    // A ball's box does not depend on the rotation.
+    const Eigen::Vector3d c = X_WS.translation();
+    return Eigen::AlignedBox3d(c.array() - ball->radius, c.array() + ball->radius);
+  }
+  Eigen::Vector3d half;
+  if (const auto* b = std::get_if<Box>(&shape)) {
+    half = b->half_extents;
+  } else {
+    const auto& c = std::get<Cylinder>(shape);
+    half = Eigen::Vector3d(c.radius, c.radius, c.length / 2);
+  }
+  // |R| h is the half-size of the rotated box's box.
+  const Eigen::Vector3d world_half = X_WS.linear().cwiseAbs() * half;
+  return Eigen::AlignedBox3d(X_WS.translation() - world_half, X_WS.translation() + world_half);
+}
+
 }  // namespace octomotion

@@ -28,24 +28,6 @@ double secondsSince(Clock::time_point t) {
 // enough to be few, fine enough (8 voxels) to keep the bound useful.
 constexpr int kSphereLevel = 3;
 
-Eigen::AlignedBox3d primitiveBox(const Primitive& shape, const Eigen::Isometry3d& X) {
-  Eigen::Vector3d half;
-  if (const auto* b = std::get_if<Box>(&shape)) {
-    half = b->half_extents;
-  } else if (const auto* s = std::get_if<Sphere>(&shape)) {
-    half = Eigen::Vector3d::Constant(s->radius);
-  } else {
-    const auto& c = std::get<Cylinder>(shape);
-    half = Eigen::Vector3d(c.radius, c.radius, c.length / 2);
-  }
-  Eigen::AlignedBox3d box;
-  for (int i = 0; i < 8; ++i) {
-    box.extend(X * Eigen::Vector3d((i & 1) ? half.x() : -half.x(), (i & 2) ? half.y() : -half.y(),
-                                   (i & 4) ? half.z() : -half.z()));
-  }
-  return box;
-}
-
 double distanceToBox(const Eigen::Vector3d& p, const Eigen::AlignedBox3d& box) {
   return (p - p.cwiseMax(box.min()).cwiseMin(box.max())).norm();
 }
@@ -131,7 +113,7 @@ OctreeCollisionModel::OctreeCollisionModel(RobotModel robot, const EnvironmentGe
     std::vector<const TriangleMesh*> element_mesh;
     for (const CollisionElement& e : link.collision) {
       if (const auto* prim = std::get_if<Primitive>(&e.geometry)) {
-        box_L.extend(primitiveBox(*prim, e.X_LE));
+        box_L.extend(boundingBox(*prim, e.X_LE));
         element_mesh.push_back(nullptr);
       } else {
         const auto& ref = std::get<MeshRef>(e.geometry);
@@ -143,12 +125,7 @@ OctreeCollisionModel::OctreeCollisionModel(RobotModel robot, const EnvironmentGe
           mo.keep_root_transform = options.keep_mesh_root_transform;
           mo.scale = ref.scale;
           TriangleMesh mesh = loadMesh(ref.path, mo);
-          if (options.center_mesh_vertices && !mesh.vertices.empty()) {
-            Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-            for (const Eigen::Vector3d& v : mesh.vertices) mean += v;
-            mean /= static_cast<double>(mesh.vertices.size());
-            for (Eigen::Vector3d& v : mesh.vertices) v -= mean;
-          }
+          if (options.center_mesh_vertices) centerOnVertexMean(mesh);
           it = meshes.emplace(key, std::move(mesh)).first;
         }
         for (const Eigen::Vector3d& v : it->second.vertices) box_L.extend(e.X_LE * v);

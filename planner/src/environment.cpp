@@ -24,26 +24,6 @@ Eigen::AlignedBox3d boxOfPoints(const std::vector<Eigen::Vector3d>& points_O,
   return box;
 }
 
-Eigen::AlignedBox3d primitiveBounds(const Primitive& shape, const Eigen::Isometry3d& X_WO) {
-  Eigen::Vector3d half;
-  if (const auto* b = std::get_if<Box>(&shape)) {
-    half = b->half_extents;
-  } else if (const auto* s = std::get_if<Sphere>(&shape)) {
-    // A ball's box does not depend on the rotation.
-    const Eigen::Vector3d c = X_WO.translation();
-    return Eigen::AlignedBox3d(c.array() - s->radius, c.array() + s->radius);
-  } else {
-    const auto& c = std::get<Cylinder>(shape);
-    half = Eigen::Vector3d(c.radius, c.radius, c.length / 2);
-  }
-  std::vector<Eigen::Vector3d> corners;
-  for (int i = 0; i < 8; ++i) {
-    corners.emplace_back((i & 1) ? half.x() : -half.x(), (i & 2) ? half.y() : -half.y(),
-                         (i & 4) ? half.z() : -half.z());
-  }
-  return boxOfPoints(corners, X_WO);
-}
-
 Eigen::AlignedBox3d octreeBounds(const Octree& tree) {
   Eigen::AlignedBox3d box;
   if (const auto b = tree.bounds()) {
@@ -84,7 +64,7 @@ EnvironmentGeometry EnvironmentGeometry::load(const std::vector<EnvironmentObjec
     switch (spec.kind) {
       case EnvironmentObject::Kind::kPrimitive:
         validate(spec.primitive);
-        item.bounds_W = primitiveBounds(spec.primitive, spec.X_WO);
+        item.bounds_W = boundingBox(spec.primitive, spec.X_WO);
         break;
       case EnvironmentObject::Kind::kMesh: {
         MeshLoadOptions options;

@@ -105,12 +105,7 @@ FclCollisionModel::FclCollisionModel(const RobotModel& robot,
           options.keep_root_transform = keep_mesh_root_transform;
           options.scale = ref.scale;
           TriangleMesh mesh = loadMesh(ref.path, options);
-          if (center_mesh_vertices && !mesh.vertices.empty()) {
-            Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-            for (const Eigen::Vector3d& v : mesh.vertices) mean += v;
-            mean /= static_cast<double>(mesh.vertices.size());
-            for (Eigen::Vector3d& v : mesh.vertices) v -= mean;
-          }
+          if (center_mesh_vertices) centerOnVertexMean(mesh);
           it = meshes.emplace(key, meshOf(mesh)).first;
         }
         g = it->second;

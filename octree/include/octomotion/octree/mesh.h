@@ -32,6 +32,10 @@ struct MeshLoadOptions {
 // non-finite vertex; InvalidArgument for a non-finite or zero scale.
 TriangleMesh loadMesh(const std::string& path, const MeshLoadOptions& options = {});
 
+// Shifts the vertices so that their mean is the origin (OMPL.app's convention for robots);
+// returns the shift that was subtracted.
+Eigen::Vector3d centerOnVertexMean(TriangleMesh& mesh);
+
 // Throws InvalidArgument (naming `what`) for an index out of range or a non-finite vertex.
 void validateMesh(const TriangleMesh& mesh, const std::string& what = "mesh");
 

@@ -5,6 +5,7 @@
 #include <variant>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 namespace octomotion {
 
@@ -29,6 +30,10 @@ using Primitive = std::variant<Box, Sphere, Cylinder>;
 // Throws InvalidArgument naming the field (e.g. "Box.half_extents.y") when a size is zero,
 // negative, NaN or infinite.
 void validate(const Primitive& shape);
+
+// World-frame axis-aligned box of the shape placed at X_WS (exact for boxes and balls; for a
+// cylinder, the box of its bounding box).
+Eigen::AlignedBox3d boundingBox(const Primitive& shape, const Eigen::Isometry3d& X_WS);
 
 // True when the point (in the shape frame S) is on or inside the shape.
 bool containsPoint(const Primitive& shape, const Eigen::Vector3d& p_S);
