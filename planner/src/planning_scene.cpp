@@ -31,6 +31,33 @@ namespace octomotion {
 namespace ob = ompl::base;
 namespace og = ompl::geometric;
 
+namespace {
+
+// The box of every link's collision geometry at the zero configuration, in the root frame.
+Eigen::AlignedBox3d geometryBox(const RobotModel& robot) {
+  RobotData data = robot.makeData();
+  const std::vector<double> q(static_cast<std::size_t>(robot.variableCount()), 0.0);
+  robot.forwardKinematics(q.data(), q.size(), data);
+  Eigen::AlignedBox3d box;
+  for (int l = 0; l < robot.linkCount(); ++l) {
+    for (const CollisionElement& e : robot.link(l).collision) {
+      const Eigen::Isometry3d X = data.linkPose(l) * e.X_LE;
+      if (const auto* p = std::get_if<Primitive>(&e.geometry)) {
+        box.extend(boundingBox(*p, X));
+      } else {
+        const auto& ref = std::get<MeshRef>(e.geometry);
+        MeshLoadOptions options;
+        options.keep_root_transform = false;
+        options.scale = ref.scale;
+        for (const Eigen::Vector3d& v : loadMesh(ref.path, options).vertices) box.extend(X * v);
+      }
+    }
+  }
+  return box;
+}
+
+}  // namespace
+
 double autoResolution(const RobotModel& robot, const Eigen::AlignedBox3d& scene_box,
                       double robot_diagonal) {
   if (!robot.isFreeFlying()) return 0.01;
@@ -90,6 +117,12 @@ PlanningScene loadPlanningScene(const std::string& scene_path, const SceneOverri
                                  overrides.package_paths.end());
     options.warnings = warnings;
     robot = RobotModel::fromUrdfFile(spec.robot.urdf, options);
+    if (robot->variableCount() == 0) {
+      // A URDF without movable joints is a rigid body: it flies free in SE(3).
+      options.base = BaseMotion::kFreeFlying;
+      robot = RobotModel::fromUrdfFile(spec.robot.urdf, options);
+      robot_diagonal = geometryBox(*robot).diagonal().norm();
+    }
     if (!spec.robot.srdf.empty()) robot->loadSrdfFile(spec.robot.srdf);
   } else {
     robot = RobotModel::fromMesh(spec.robot.mesh);

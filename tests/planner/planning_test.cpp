@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <ompl/base/spaces/RealVectorStateSpace.h>
+#include <ompl/base/spaces/SE3StateSpace.h>
 #include <ompl/util/Console.h>
 
 #include "octomotion/planner/octree_validity_checker.h"
@@ -69,6 +70,25 @@ INSTANTIATE_TEST_SUITE_P(Scenes, Planning,
                            }
                            return name;
                          });
+
+TEST(Planning, OneLinkUrdfIsAFreeFlyingBody) {
+  ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
+  SceneOverrides overrides;
+  overrides.seed = 5;
+  PlanningScene scene = loadPlanningScene(
+      std::string(OCTOMOTION_TEST_DATA_DIR) + "/scenes/l_piece_urdf.yaml", overrides);
+  EXPECT_TRUE(scene.model->robot().isFreeFlying());
+  // auto resolution for a rigid body: max(scene diagonal / 1024, robot diagonal / 32).
+  EXPECT_GT(*scene.spec.octree.resolution, 0.005);
+  EXPECT_LT(*scene.spec.octree.resolution, 0.02);
+  const auto si = scene.setup->getSpaceInformation();
+  const auto pdef = scene.setup->getProblemDefinition();
+  EXPECT_TRUE(si->isValid(pdef->getStartState(0)));
+  ompl::base::ScopedState<> in_wall(si);
+  si->copyState(in_wall.get(), pdef->getStartState(0));
+  in_wall->as<ompl::base::SE3StateSpace::StateType>()->setX(0.0);  // upright, inside the wall
+  EXPECT_FALSE(si->isValid(in_wall.get()));
+}
 
 TEST(Planning, CheckerRejectsNonFiniteAndOutOfBoundsStates) {
   PlanningScene scene =
