@@ -66,6 +66,35 @@ double distanceToBlack(const Octree& tree, const Eigen::Vector3d& p_W, double be
   return best;
 }
 
+// Surface voxels of a box at a resolution: what a tree of a solid that fills it has to store.
+double surfaceVoxels(const Eigen::AlignedBox3d& box, double resolution) {
+  if (box.isEmpty()) return 0;
+  const Eigen::Vector3d s = box.sizes() / resolution + Eigen::Vector3d::Ones();
+  return 2 * (s.x() * s.y() + s.y() * s.z() + s.z() * s.x());
+}
+
+void guardTreeSizes(const RobotModel& robot, const std::vector<Eigen::AlignedBox3d>& boxes_L,
+                    double link_res, const EnvironmentGeometry& environment,
+                    const Eigen::AlignedBox3d& region, const CollisionModelOptions& options) {
+  auto check = [&](const std::string& what, double voxels, double resolution) {
+    if (voxels > options.max_surface_voxels) {
+      std::ostringstream msg;
+      msg << what << " at resolution " << resolution << " m would need about "
+          << std::llround(voxels) << " surface voxels (limit "
+          << std::llround(options.max_surface_voxels) << "); use a coarser resolution";
+      throw InvalidArgument(msg.str());
+    }
+  };
+  for (std::size_t i = 0; i < boxes_L.size(); ++i) {
+    check("link " + robot.link(static_cast<int>(i)).name, surfaceVoxels(boxes_L[i], link_res),
+          link_res);
+  }
+  for (const EnvironmentGeometry::Item& item : environment.items()) {
+    check(item.spec.name, surfaceVoxels(item.bounds_W.intersection(region), options.resolution),
+          options.resolution);
+  }
+}
+
 }  // namespace
 
 std::uint64_t nextModelId() {
@@ -96,25 +125,23 @@ OctreeCollisionModel::OctreeCollisionModel(RobotModel robot, const EnvironmentGe
   }
   report_.link_resolution = link_res;
 
-  // 1. Each link's source tree, in its own frame, at the link resolution.
+  // 1. Each link's geometry in its own frame (meshes loaded once), and its extent.
   std::map<std::pair<std::string, std::array<double, 3>>, TriangleMesh> meshes;
   const int n_links = robot_.linkCount();
-  std::vector<LinkTree> trees(static_cast<std::size_t>(n_links));
-  std::vector<double> link_reach_from_origin(static_cast<std::size_t>(n_links), 0.0);
-  report_.links.resize(static_cast<std::size_t>(n_links));
+  const auto n = static_cast<std::size_t>(n_links);
+  std::vector<Eigen::AlignedBox3d> boxes_L(n);
+  std::vector<std::vector<const TriangleMesh*>> element_meshes(n);
+  // Farthest point of a link's voxels from its frame origin: its geometry plus one voxel diagonal.
+  std::vector<double> geometry_reach(n, 0.0);
+  report_.links.resize(n);
   for (int i = 0; i < n_links; ++i) {
     const Link& link = robot_.link(i);
-    LinkReport& lr = report_.links[static_cast<std::size_t>(i)];
-    lr.name = link.name;
-    if (!link.hasCollision()) continue;
-    const auto t0 = Clock::now();
-    // Bounding box of the geometry in the link frame, to fit the source grid.
-    Eigen::AlignedBox3d box_L;
-    std::vector<const TriangleMesh*> element_mesh;
+    report_.links[static_cast<std::size_t>(i)].name = link.name;
+    Eigen::AlignedBox3d& box_L = boxes_L[static_cast<std::size_t>(i)];
     for (const CollisionElement& e : link.collision) {
       if (const auto* prim = std::get_if<Primitive>(&e.geometry)) {
         box_L.extend(boundingBox(*prim, e.X_LE));
-        element_mesh.push_back(nullptr);
+        element_meshes[static_cast<std::size_t>(i)].push_back(nullptr);
       } else {
         const auto& ref = std::get<MeshRef>(e.geometry);
         const auto key = std::make_pair(
@@ -129,9 +156,77 @@ OctreeCollisionModel::OctreeCollisionModel(RobotModel robot, const EnvironmentGe
           it = meshes.emplace(key, std::move(mesh)).first;
         }
         for (const Eigen::Vector3d& v : it->second.vertices) box_L.extend(e.X_LE * v);
-        element_mesh.push_back(&it->second);
+        element_meshes[static_cast<std::size_t>(i)].push_back(&it->second);
       }
     }
+    if (box_L.isEmpty()) continue;
+    for (int c = 0; c < 8; ++c) {
+      geometry_reach[static_cast<std::size_t>(i)] =
+          std::max(geometry_reach[static_cast<std::size_t>(i)],
+                   box_L.corner(static_cast<Eigen::AlignedBox3d::CornerType>(c)).norm());
+    }
+    geometry_reach[static_cast<std::size_t>(i)] += std::sqrt(3.0) * link_res;
+  }
+
+  // 2. What the robot can reach: bound each link's distance from the base origin along its
+  // chain (joint offsets, prismatic travel), plus its geometry's extent from its own origin.
+  std::vector<double> origin_reach(static_cast<std::size_t>(n_links), 0.0);
+  for (const Joint& j : robot_.joints()) {
+    double travel = 0;
+    if (j.type == JointType::kPrismatic) {
+      if (j.isMimic()) {
+        const Joint& m = robot_.joint(j.mimic_master);
+        travel = std::abs(j.mimic_multiplier) * std::max(std::abs(m.lower), std::abs(m.upper)) +
+                 std::abs(j.mimic_offset);
+      } else {
+        travel = std::max(std::abs(j.lower), std::abs(j.upper));
+      }
+    }
+    origin_reach[static_cast<std::size_t>(j.child_link)] =
+        origin_reach[static_cast<std::size_t>(j.parent_link)] + j.X_PJ.translation().norm() +
+        travel;
+  }
+  Eigen::AlignedBox3d base_region;
+  if (robot_.isFreeFlying()) {
+    base_region = *options.base_position_bounds;
+  } else {
+    base_region.extend(options.X_WB.translation());
+  }
+  std::vector<double> link_reach(static_cast<std::size_t>(n_links), 0.0);
+  double reach = 0;
+  for (int i = 0; i < n_links; ++i) {
+    const auto s = static_cast<std::size_t>(i);
+    link_reach[s] = origin_reach[s] + geometry_reach[s];
+    if (robot_.link(i).hasCollision()) reach = std::max(reach, link_reach[s]);
+  }
+  report_.reach_W =
+      Eigen::AlignedBox3d(base_region.min().array() - reach, base_region.max().array() + reach);
+
+  // 3. The universe: the environment where the robot can reach it. Fitted before anything is
+  // voxelized, so an impossible resolution fails at once.
+  Eigen::AlignedBox3d region = report_.reach_W;
+  if (const auto env_box = environment.bounds()) {
+    const Eigen::AlignedBox3d overlap = env_box->intersection(report_.reach_W);
+    if (!overlap.isEmpty()) {
+      region = overlap;
+      region.extend(overlap.min() - Eigen::Vector3d::Constant(options.resolution));
+      region.extend(overlap.max() + Eigen::Vector3d::Constant(options.resolution));
+    }
+  }
+  const WorldGrid grid = fitGrid(region, options.resolution);
+  report_.grid = grid;
+  guardTreeSizes(robot_, boxes_L, link_res, environment, region, options);
+
+  // 4. Each link's source tree, in its own frame, at the link resolution.
+  std::vector<LinkTree> trees(n);
+  for (int i = 0; i < n_links; ++i) {
+    const Link& link = robot_.link(i);
+    LinkReport& lr = report_.links[static_cast<std::size_t>(i)];
+    if (!link.hasCollision()) continue;
+    const auto t0 = Clock::now();
+    Eigen::AlignedBox3d box_L = boxes_L[static_cast<std::size_t>(i)];
+    const std::vector<const TriangleMesh*>& element_mesh =
+        element_meshes[static_cast<std::size_t>(i)];
     // One voxel of margin so conservative voxels on the boundary stay inside the universe.
     box_L.extend(box_L.min() - Eigen::Vector3d::Constant(link_res));
     box_L.extend(box_L.max() + Eigen::Vector3d::Constant(link_res));
@@ -153,8 +248,6 @@ OctreeCollisionModel::OctreeCollisionModel(RobotModel robot, const EnvironmentGe
       const Eigen::Vector3d hi = source_grid.cubeMax(Cube{0, b->max});
       lt.center_L = (lo + hi) / 2;
       lt.radius = (hi - lo).norm() / 2;
-      link_reach_from_origin[static_cast<std::size_t>(i)] =
-          std::max({lo.norm(), hi.norm(), lt.center_L.norm() + lt.radius});
       // Clearance spheres: the level-kSphereLevel ancestors of the black leaves.
       const int level = std::min(kSphereLevel, source_grid.depth());
       std::vector<Cube> cells;
@@ -190,60 +283,15 @@ OctreeCollisionModel::OctreeCollisionModel(RobotModel robot, const EnvironmentGe
     lr.build_seconds = secondsSince(t0);
   }
 
-  // 2. What the robot can reach: bound each link's distance from the base origin along its
-  // chain (joint offsets, prismatic travel), plus its geometry's extent from its own origin.
-  std::vector<double> origin_reach(static_cast<std::size_t>(n_links), 0.0);
-  for (const Joint& j : robot_.joints()) {
-    double travel = 0;
-    if (j.type == JointType::kPrismatic) {
-      if (j.isMimic()) {
-        const Joint& m = robot_.joint(j.mimic_master);
-        travel = std::abs(j.mimic_multiplier) * std::max(std::abs(m.lower), std::abs(m.upper)) +
-                 std::abs(j.mimic_offset);
-      } else {
-        travel = std::max(std::abs(j.lower), std::abs(j.upper));
-      }
-    }
-    origin_reach[static_cast<std::size_t>(j.child_link)] =
-        origin_reach[static_cast<std::size_t>(j.parent_link)] + j.X_PJ.translation().norm() +
-        travel;
-  }
-  Eigen::AlignedBox3d base_region;
-  if (robot_.isFreeFlying()) {
-    base_region = *options.base_position_bounds;
-  } else {
-    base_region.extend(options.X_WB.translation());
-  }
-  std::vector<double> link_reach(static_cast<std::size_t>(n_links), 0.0);
-  double reach = 0;
-  for (int i = 0; i < n_links; ++i) {
-    const auto s = static_cast<std::size_t>(i);
-    link_reach[s] = origin_reach[s] + link_reach_from_origin[s] + link_res;
-    if (robot_.link(i).hasCollision()) reach = std::max(reach, link_reach[s]);
-  }
-  report_.reach_W =
-      Eigen::AlignedBox3d(base_region.min().array() - reach, base_region.max().array() + reach);
-
-  // 3. The universe: the environment where the robot can reach it.
-  Eigen::AlignedBox3d region = report_.reach_W;
-  if (const auto env_box = environment.bounds()) {
-    const Eigen::AlignedBox3d overlap = env_box->intersection(report_.reach_W);
-    if (!overlap.isEmpty()) {
-      region = overlap;
-      region.extend(overlap.min() - Eigen::Vector3d::Constant(options.resolution));
-      region.extend(overlap.max() + Eigen::Vector3d::Constant(options.resolution));
-    }
-  }
-  const WorldGrid grid = fitGrid(region, options.resolution);
+  // 5. The environment tree.
   environment_ =
       environment.voxelize(grid, options.rounding, &report_.environment, options.warnings);
   if (const auto b = environment_.bounds()) {
     environment_box_W_ =
         Eigen::AlignedBox3d(grid.cubeMin(Cube{0, b->min}), grid.cubeMax(Cube{0, b->max}));
   }
-  report_.grid = grid;
 
-  // 4. Keep the links that can touch something: the environment, or another link.
+  // 6. Keep the links that can touch something: the environment, or another link.
   std::vector<bool> in_pair(static_cast<std::size_t>(n_links), false);
   for (const auto& [a, b] : robot_.checkedPairs()) {
     in_pair[static_cast<std::size_t>(a)] = in_pair[static_cast<std::size_t>(b)] = true;

@@ -135,7 +135,14 @@ PlanningScene loadPlanningScene(const std::string& scene_path, const SceneOverri
   }
 
   // The environment, and the region the problem lives in.
-  const EnvironmentGeometry environment = EnvironmentGeometry::load(spec.environment, warnings);
+  // Errors in the files a scene names also name the scene.
+  const EnvironmentGeometry environment = [&] {
+    try {
+      return EnvironmentGeometry::load(spec.environment, warnings);
+    } catch (const Error& e) {
+      throw FileError(spec.path, e.what());
+    }
+  }();
   Eigen::AlignedBox3d scene_box;
   if (const auto b = environment.bounds()) scene_box = *b;
   if (robot->isFreeFlying() && !spec.problem.bounds) {

@@ -42,6 +42,10 @@ struct CollisionModelOptions {
   // OMPL.app rigid bodies keep it and are shifted so the mean of their vertices is the origin.
   bool keep_mesh_root_transform = false;
   bool center_mesh_vertices = false;
+  // Building fails early (InvalidArgument naming the object and the resolution) when a tree's
+  // surface, estimated from its bounding box, would exceed this many voxels: a typo such as a
+  // micrometre resolution must not exhaust the machine. 2e8 surface voxels is about 0.5 GB.
+  double max_surface_voxels = 2e8;
   WarningSink warnings;
 };
 
