@@ -500,9 +500,11 @@ class AxisWindow {
   std::vector<Made> made_;
 };
 
-}  // namespace
-
-TranslateResult translate(const Octree& source, const Eigen::Matrix<std::int64_t, 3, 1>& d) {
+// Applies the x, y and z components in turn with one per-axis mover (the paper's AxisMover or
+// the top-down AxisWindow); both share the clipping shortcut.
+template <class Mover>
+TranslateResult translateAxisByAxis(const Octree& source,
+                                    const Eigen::Matrix<std::int64_t, 3, 1>& d) {
   TranslateResult result{source, false};
   const std::int64_t side = std::int64_t{source.grid().sideVoxels()};
   for (int axis = 0; axis < 3; ++axis) {
@@ -514,29 +516,19 @@ TranslateResult translate(const Octree& source, const Eigen::Matrix<std::int64_t
       result.clipped = true;
       break;
     }
-    result.tree = AxisMover(result.tree, axis, component).run(&result.clipped);
+    result.tree = Mover(result.tree, axis, component).run(&result.clipped);
   }
   return result;
 }
 
-}  // namespace octomotion
+}  // namespace
 
-namespace octomotion {
+TranslateResult translate(const Octree& source, const Eigen::Matrix<std::int64_t, 3, 1>& d) {
+  return translateAxisByAxis<AxisMover>(source, d);
+}
 
 TranslateResult translateTopDown(const Octree& source, const Eigen::Matrix<std::int64_t, 3, 1>& d) {
-  TranslateResult result{source, false};
-  const std::int64_t side = std::int64_t{source.grid().sideVoxels()};
-  for (int axis = 0; axis < 3; ++axis) {
-    const std::int64_t component = d[axis];
-    if (component == 0 || result.tree.empty()) continue;
-    if (component >= side || component <= -side) {
-      result.tree = Octree(source.grid());
-      result.clipped = true;
-      break;
-    }
-    result.tree = AxisWindow(result.tree, axis, component).run(&result.clipped);
-  }
-  return result;
+  return translateAxisByAxis<AxisWindow>(source, d);
 }
 
 }  // namespace octomotion
