@@ -106,18 +106,18 @@ OctreeValidityChecker::OctreeValidityChecker(const ob::SpaceInformationPtr& si,
   specs_.clearanceComputationType = ob::StateValidityCheckerSpecs::BOUNDED_APPROXIMATE;
 }
 
-bool OctreeValidityChecker::check(const ob::State* state, CheckScratch& scratch) const {
-  ThreadScratch& t = threadScratch(*model_);
+bool OctreeValidityChecker::check(const ob::State* state) const {
   if (!si_->satisfiesBounds(state)) return false;
+  ThreadScratch& t = threadScratch(*model_);
   if (!stateToConfiguration(model_->robot(), state, t.q, t.X_WB)) return false;
-  model_->robot().forwardKinematics(t.q.data(), t.q.size(), scratch.robot,
+  model_->robot().forwardKinematics(t.q.data(), t.q.size(), t.check.robot,
                                     model_->robot().isFreeFlying() ? t.X_WB : model_->baseMount());
-  return !model_->linksInCollision(path_, scratch);
+  return !model_->linksInCollision(path_, t.check);
 }
 
 bool OctreeValidityChecker::isValid(const ob::State* state) const {
   try {
-    return check(state, threadScratch(*model_).check);
+    return check(state);
   } catch (const std::exception&) {
     return false;  // never throw into OMPL: an unusable state is an invalid one
   }
@@ -125,9 +125,8 @@ bool OctreeValidityChecker::isValid(const ob::State* state) const {
 
 double OctreeValidityChecker::clearance(const ob::State* state) const {
   try {
-    CheckScratch& scratch = threadScratch(*model_).check;
-    if (!check(state, scratch)) return 0.0;
-    return model_->clearanceLowerBound(scratch);
+    if (!check(state)) return 0.0;
+    return model_->clearanceLowerBound(threadScratch(*model_).check);
   } catch (const std::exception&) {
     return 0.0;
   }

@@ -47,7 +47,8 @@ class OctreeValidityChecker : public ompl::base::StateValidityChecker {
   CheckerPath path() const { return path_; }
 
  private:
-  bool check(const ompl::base::State* state, CheckScratch& scratch) const;
+  // Bounds, finiteness, FK and the collision tests, in this thread's scratch.
+  bool check(const ompl::base::State* state) const;
 
   std::shared_ptr<const OctreeCollisionModel> model_;
   CheckerPath path_;
