@@ -14,6 +14,7 @@
 #include <ompl/base/spaces/SE3StateSpace.h>
 #include <ompl/util/Console.h>
 
+#include "commands.h"
 #include "octomotion/error.h"
 #include "octomotion/planner/octree_validity_checker.h"
 #include "octomotion/planner/planning_scene.h"
@@ -26,6 +27,8 @@ const char* kUsage = R"(usage:
   octomotion plan SCENE [--out PATH] [--planner NAME] [--time SECONDS] [--seed N] [options]
   octomotion check SCENE --states STATES.csv [options]
   octomotion info SCENE [options]
+  octomotion bench SCENE [bench options] [options]   (octomotion bench --help)
+  octomotion view SCENE [--path PATH] [view options] [options]   (octomotion view --help)
 SCENE is a YAML scene (docs/scenes.md) or an OMPL.app .cfg problem.
 options:
   --resolution METRES|auto   voxel size of the environment (overrides the scene)
@@ -43,15 +46,6 @@ struct Args {
   SceneOverrides overrides;
 };
 
-double parseNumber(const std::string& flag, const std::string& value) {
-  char* end = nullptr;
-  const double v = std::strtod(value.c_str(), &end);
-  if (value.empty() || *end != '\0' || !std::isfinite(v)) {
-    throw InvalidArgument(flag + ": expected a number, got '" + value + "'");
-  }
-  return v;
-}
-
 Args parseArgs(int argc, char** argv) {
   Args a;
   std::vector<std::string> positional;
@@ -61,37 +55,14 @@ Args parseArgs(int argc, char** argv) {
       if (i + 1 >= argc) throw InvalidArgument(arg + ": missing value");
       return argv[++i];
     };
-    if (arg == "--out") {
+    if (cli::parseSceneOption(arg, value, a.overrides)) {
+      continue;
+    } else if (arg == "--out") {
       a.out = value();
     } else if (arg == "--states") {
       a.states = value();
-    } else if (arg == "--planner") {
-      a.overrides.planner = value();
-    } else if (arg == "--time") {
-      const double t = parseNumber(arg, value());
-      if (!(t > 0)) throw InvalidArgument("--time: must be > 0");
-      a.overrides.time = t;
-    } else if (arg == "--seed") {
-      const double s = parseNumber(arg, value());
-      if (s < 0 || s != std::floor(s)) throw InvalidArgument("--seed: expected an integer >= 0");
-      a.overrides.seed = static_cast<std::uint64_t>(s);
-    } else if (arg == "--resolution") {
-      const std::string v = value();
-      if (v == "auto") {
-        a.overrides.auto_resolution = true;
-      } else {
-        const double r = parseNumber(arg, v);
-        if (!(r > 0)) throw InvalidArgument("--resolution: must be > 0");
-        a.overrides.resolution = r;
-      }
-    } else if (arg == "--rounding") {
-      a.overrides.rounding = roundingFromString(value().c_str());
-    } else if (arg == "--checker") {
-      a.overrides.checker = checkerName(value());
-    } else if (arg == "--package-path") {
-      a.overrides.package_paths.push_back(value());
     } else if (arg == "--interpolation") {
-      a.interpolation = parseNumber(arg, value());
+      a.interpolation = cli::parseNumber(arg, value());
       if (!(a.interpolation > 0)) throw InvalidArgument("--interpolation: must be > 0");
     } else if (arg == "--verbose") {
       a.verbose = true;
@@ -116,15 +87,7 @@ Args parseArgs(int argc, char** argv) {
 }
 
 PlanningScene load(const Args& a) {
-  const auto t0 = std::chrono::steady_clock::now();
-  PlanningScene scene = loadPlanningScene(a.scene, a.overrides, [](const std::string& m) {
-    std::cerr << "octomotion: warning: " << m << "\n";
-  });
-  std::cerr << "octomotion: loaded " << a.scene << " in "
-            << std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()
-            << " s, checker " << scene.checker << ", rounding "
-            << toString(scene.spec.octree.rounding) << "\n";
-  return scene;
+  return cli::loadSceneVerbose(a.scene, a.overrides);
 }
 
 int plan(const Args& a) {
@@ -253,6 +216,12 @@ int info(const Args& a) {
 
 int main(int argc, char** argv) {
   try {
+    // Commands with options of their own parse their arguments themselves.
+    if (argc >= 2 && (std::string(argv[1]) == "bench" || std::string(argv[1]) == "view")) {
+      ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
+      const std::vector<std::string> rest(argv + 2, argv + argc);
+      return std::string(argv[1]) == "bench" ? cli::benchCommand(rest) : cli::viewCommand(rest);
+    }
     const Args args = parseArgs(argc, argv);
     ompl::msg::setLogLevel(args.verbose ? ompl::msg::LOG_INFO : ompl::msg::LOG_WARN);
     if (args.command == "plan") return plan(args);
