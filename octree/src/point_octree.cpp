@@ -387,9 +387,21 @@ void PointOctree::radiusSearch(const Eigen::Vector3f& q, float radius,
 }
 
 double PointOctree::nearestDistance(const Eigen::Vector3f& q) const {
+  return nearestDistance(q, std::numeric_limits<double>::infinity());
+}
+
+double PointOctree::nearestDistance(const Eigen::Vector3f& q, double upper_bound) const {
   if (empty() || !q.allFinite()) return std::numeric_limits<double>::infinity();
-  // k = 1 specialised: one running best, nearest child first, no output vector.
+  // k = 1 specialised: one running best, nearest child first, no output vector. Starting from
+  // the caller's bound prunes every cell farther than it (the bound is rounded up to float so no
+  // point nearer than it is pruned).
   float best = std::numeric_limits<float>::infinity();
+  if (upper_bound < std::numeric_limits<double>::infinity()) {
+    const double b2 = std::max(0.0, upper_bound) * std::max(0.0, upper_bound);
+    best = b2 < static_cast<double>(std::numeric_limits<float>::max())
+               ? std::nextafter(static_cast<float>(b2), std::numeric_limits<float>::infinity())
+               : std::numeric_limits<float>::infinity();
+  }
   const float qx = q.x(), qy = q.y(), qz = q.z();
   struct Frame {
     std::uint32_t node;

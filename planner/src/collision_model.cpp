@@ -90,12 +90,28 @@ void guardTreeSizes(const RobotModel& robot, const std::vector<Eigen::AlignedBox
           link_res);
   }
   for (const EnvironmentGeometry::Item& item : environment.items()) {
-    check(item.spec.name, surfaceVoxels(item.bounds_W.intersection(region), options.resolution),
-          options.resolution);
+    double voxels = surfaceVoxels(item.bounds_W.intersection(region), options.resolution);
+    // A point cloud marks at most one voxel per point, however large its box (a sparse scan).
+    if (item.spec.kind == EnvironmentObject::Kind::kPointCloud) {
+      voxels = std::min(voxels, static_cast<double>(item.points_W.size()));
+    }
+    check(item.spec.name, voxels, options.resolution);
   }
 }
 
 }  // namespace
+
+const char* selfBroadPhaseName(SelfBroadPhase strategy) {
+  switch (strategy) {
+    case SelfBroadPhase::kAuto:
+      return "auto";
+    case SelfBroadPhase::kPairs:
+      return "all checked pairs";
+    case SelfBroadPhase::kNObjectsOctree:
+      return "N-objects octree";
+  }
+  return "?";
+}
 
 std::uint64_t nextModelId() {
   static std::atomic<std::uint64_t> next{1};
@@ -119,6 +135,9 @@ OctreeCollisionModel::OctreeCollisionModel(RobotModel robot, const EnvironmentGe
   const double link_res = options.link_resolution.value_or(options.resolution);
   if (!(std::isfinite(link_res) && link_res > 0)) {
     throw InvalidArgument("link resolution must be finite and > 0");
+  }
+  if (options.self_broad_phase_leaf_capacity < 1) {
+    throw InvalidArgument("self_broad_phase_leaf_capacity must be >= 1");
   }
   if (robot_.isFreeFlying() && !options.base_position_bounds) {
     throw InvalidArgument("a free-flying robot needs base_position_bounds (the SE(3) bounds)");
@@ -242,6 +261,7 @@ OctreeCollisionModel::OctreeCollisionModel(RobotModel robot, const EnvironmentGe
     }
     LinkTree& lt = trees[static_cast<std::size_t>(i)];
     lt.link = i;
+    lt.source_diagonal = std::sqrt(3.0) * source_grid.voxelSize();
     // Bounding sphere of the black voxels (centre: middle of their box).
     if (const auto b = source.bounds()) {
       const Eigen::Vector3d lo = source_grid.cubeMin(Cube{0, b->min});
@@ -291,6 +311,50 @@ OctreeCollisionModel::OctreeCollisionModel(RobotModel robot, const EnvironmentGe
         Eigen::AlignedBox3d(grid.cubeMin(Cube{0, b->min}), grid.cubeMax(Cube{0, b->max}));
   }
 
+  // 5a. Object boxes for the environment pre-test: every voxel an object marks (any rounding,
+  // any kind) overlaps the object's box, so it lies within one voxel of it.
+  const Eigen::Vector3d one_voxel = Eigen::Vector3d::Constant(grid.voxelSize() * (1 + 1e-9));
+  const Eigen::AlignedBox3d universe_W(grid.origin(), grid.origin().array() + grid.sideMetres());
+  for (const EnvironmentGeometry::Item& item : environment.items()) {
+    if (item.bounds_W.isEmpty()) continue;
+    const Eigen::AlignedBox3d box(item.bounds_W.min() - one_voxel, item.bounds_W.max() + one_voxel);
+    if (!box.intersection(universe_W).isEmpty()) object_boxes_W_.push_back(box);
+  }
+  switch (options.environment_pre_test) {
+    case EnvironmentPreTest::kAuto:
+      report_.environment_pre_test =
+          object_boxes_W_.size() >= 2 && object_boxes_W_.size() <= kObjectBoxesMaxObjects
+              ? EnvironmentPreTest::kObjectBoxes
+              : EnvironmentPreTest::kEnvironmentBox;
+      break;
+    default:
+      report_.environment_pre_test = options.environment_pre_test;
+  }
+  if (report_.environment_pre_test != EnvironmentPreTest::kObjectBoxes) object_boxes_W_.clear();
+  report_.environment_object_boxes = object_boxes_W_.size();
+
+  // 5b. Clearance point trees: the black leaves' centres, one PointOctree per leaf level, so a
+  // nearest centre at distance d bounds the distance to its cube by d - half diagonal.
+  if (options.clearance == ClearanceMethod::kPointOctree && !environment_.empty()) {
+    std::vector<std::vector<Eigen::Vector3f>> centres(static_cast<std::size_t>(grid.depth()) + 1);
+    environment_.forEachBlackLeaf([&](const Cube& c) {
+      centres[static_cast<std::size_t>(c.level)].push_back(
+          ((grid.cubeMin(c) + grid.cubeMax(c)) / 2).cast<float>());
+    });
+    for (std::size_t level = 0; level < centres.size(); ++level) {
+      if (centres[level].empty()) continue;
+      const double side = grid.voxelSize() * static_cast<double>(std::uint64_t{1} << level);
+      clearance_levels_.push_back(
+          {side * std::sqrt(3.0) / 2, pointcloud::PointOctree::build(centres[level])});
+    }
+    // Centres rounded to float move by at most |coordinate| * 2^-24 per axis, and float
+    // distances carry a few ulps of relative error: 1e-6 of the largest coordinate (plus 1 um)
+    // covers both with a wide margin.
+    const double extent = std::max(grid.origin().cwiseAbs().maxCoeff(),
+                                   (grid.origin().array() + grid.sideMetres()).abs().maxCoeff());
+    clearance_float_slack_ = 1e-6 * (1 + 4 * extent);
+  }
+
   // 6. Keep the links that can touch something: the environment, or another link.
   std::vector<bool> in_pair(static_cast<std::size_t>(n_links), false);
   for (const auto& [a, b] : robot_.checkedPairs()) {
@@ -316,21 +380,90 @@ OctreeCollisionModel::OctreeCollisionModel(RobotModel robot, const EnvironmentGe
     if (sa >= 0 && sb >= 0) pairs_.emplace_back(sa, sb);
   }
   report_.self_pairs = pairs_.size();
+
+  // 7. The self-collision broad phase: the links in some pair, and which of their pairs count.
+  std::vector<int> id_of_slot(links_.size(), -1);
+  for (const auto& [sa, sb] : pairs_) {
+    id_of_slot[static_cast<std::size_t>(sa)] = id_of_slot[static_cast<std::size_t>(sb)] = 0;
+  }
+  for (std::size_t slot = 0; slot < links_.size(); ++slot) {
+    if (id_of_slot[slot] < 0) continue;
+    id_of_slot[slot] = static_cast<int>(self_links_.size());
+    self_links_.push_back(static_cast<int>(slot));
+  }
+  const std::size_t m = self_links_.size();
+  self_checked_.assign(m * m, 0);
+  for (const auto& [sa, sb] : pairs_) {
+    const auto a = static_cast<std::size_t>(id_of_slot[static_cast<std::size_t>(sa)]);
+    const auto b = static_cast<std::size_t>(id_of_slot[static_cast<std::size_t>(sb)]);
+    self_checked_[a * m + b] = 1;
+  }
+  // Root of the broad phase: the reach box grown by the largest link sphere, so link boxes stay
+  // inside it (a box leaving it would only cost a re-root, never a wrong answer).
+  double max_radius = 0;
+  for (const int slot : self_links_) {
+    max_radius = std::max(max_radius, links_[static_cast<std::size_t>(slot)].radius);
+  }
+  self_root_box_W_ = Eigen::AlignedBox3d(report_.reach_W.min().array() - max_radius,
+                                         report_.reach_W.max().array() + max_radius);
+  report_.self_links = m;
+  switch (options.self_broad_phase) {
+    case SelfBroadPhase::kAuto:
+      report_.self_broad_phase = static_cast<int>(m) >= kSelfBroadPhaseAutoLinks
+                                     ? SelfBroadPhase::kNObjectsOctree
+                                     : SelfBroadPhase::kPairs;
+      break;
+    default:
+      report_.self_broad_phase = options.self_broad_phase;
+  }
   report_.build_seconds = secondsSince(start);
 }
 
 CheckScratch OctreeCollisionModel::makeScratch() const {
   CheckScratch s;
   s.robot = robot_.makeData();
+  if (report_.self_broad_phase == SelfBroadPhase::kNObjectsOctree) {
+    s.self_broad_phase.emplace(makeSelfBroadPhase());
+  }
   s.owner = id_;
   return s;
+}
+
+broadphase::NObjectsOctree OctreeCollisionModel::makeSelfBroadPhase() const {
+  broadphase::NObjectsOctree::Options o;
+  o.leaf_capacity = options_.self_broad_phase_leaf_capacity;
+  // Links are centimetres to metres across in a universe of a few metres: 8 levels (cells of
+  // 1/256 of the reach) are already finer than any link.
+  o.max_depth = 8;
+  broadphase::Aabb root{self_root_box_W_.min(), self_root_box_W_.max()};
+  if (self_root_box_W_.isEmpty()) root = {Eigen::Vector3d::Zero(), Eigen::Vector3d::Ones()};
+  broadphase::NObjectsOctree tree(root, o);
+  // Every link starts as a point at the root's centre; the first check moves them all.
+  const Eigen::Vector3d c = (root.min + root.max) / 2;
+  for (std::size_t i = 0; i < self_links_.size(); ++i) tree.add({c, c});
+  tree.rebalance();
+  return tree;
 }
 
 bool OctreeCollisionModel::linkHitsEnvironment(const LinkTree& lt, const Eigen::Isometry3d& X_WL,
                                                CheckerPath path, CollisionScratch& fused) const {
   if (!lt.touches_environment) return false;
-  // Cheapest first: the link's bounding sphere against the environment's box.
-  if (distanceToBox(X_WL * lt.center_L, environment_box_W_) > lt.radius) return false;
+  // Cheapest first: the link's bounding sphere against the environment's box (or its objects'
+  // boxes). Placed on the environment grid, the link's voxels reach up to one voxel diagonal
+  // beyond the sphere (a target voxel is black when it overlaps a moved source voxel).
+  const Eigen::Vector3d c_W = X_WL * lt.center_L;
+  const double reach = lt.radius + std::sqrt(3.0) * environment_.grid().voxelSize();
+  if (distanceToBox(c_W, environment_box_W_) > reach) return false;
+  if (!object_boxes_W_.empty()) {
+    bool near = false;
+    for (const Eigen::AlignedBox3d& box : object_boxes_W_) {
+      if (distanceToBox(c_W, box) <= reach) {
+        near = true;
+        break;
+      }
+    }
+    if (!near) return false;
+  }
   if (path == CheckerPath::kFused) {
     return collides(*lt.movable, X_WL, environment_, options_.rounding, fused);
   }
@@ -342,7 +475,8 @@ bool OctreeCollisionModel::linksHit(const LinkTree& a, const Eigen::Isometry3d& 
                                     const LinkTree& b, const Eigen::Isometry3d& X_WB,
                                     CheckerPath path, CollisionScratch& fused) const {
   const Eigen::Vector3d ca = X_WA * a.center_L, cb = X_WB * b.center_L;
-  if ((ca - cb).norm() > a.radius + b.radius) return false;
+  // B's voxels placed on A's grid reach up to one of A's voxel diagonals beyond B's sphere.
+  if ((ca - cb).norm() > a.radius + b.radius + a.source_diagonal) return false;
   // B's source tree placed in A's frame, tested against A's source tree.
   const Eigen::Isometry3d X_AB = X_WA.inverse() * X_WB;
   if (path == CheckerPath::kFused) {
@@ -351,12 +485,55 @@ bool OctreeCollisionModel::linksHit(const LinkTree& a, const Eigen::Isometry3d& 
   return intersects(moveTree(b.source, X_AB, a.source.grid(), options_.rounding), a.source);
 }
 
-bool OctreeCollisionModel::linksInCollision(CheckerPath path, CheckScratch& scratch) const {
+bool OctreeCollisionModel::environmentInCollision(CheckerPath path, CheckScratch& scratch) const {
   for (const LinkTree& lt : links_) {
     if (linkHitsEnvironment(lt, scratch.robot.linkPose(lt.link), path, scratch.fused)) {
       return true;
     }
   }
+  return false;
+}
+
+bool OctreeCollisionModel::selfInCollision(CheckerPath path, CheckScratch& scratch) const {
+  if (pairs_.empty()) return false;
+  if (report_.self_broad_phase == SelfBroadPhase::kNObjectsOctree) {
+    return selfBroadPhaseInCollision(path, scratch);
+  }
+  return selfPairsInCollision(path, scratch);
+}
+
+bool OctreeCollisionModel::selfBroadPhaseInCollision(CheckerPath path,
+                                                     CheckScratch& scratch) const {
+  // Created lazily for scratch made by hand (or for another model): once per thread, not per
+  // query.
+  if (!scratch.self_broad_phase || scratch.self_broad_phase->objectCount() != self_links_.size()) {
+    scratch.self_broad_phase.emplace(makeSelfBroadPhase());
+  }
+  broadphase::NObjectsOctree& tree = *scratch.self_broad_phase;
+  // Each link's box bounds its bounding sphere grown by its voxel diagonal, slightly padded: two
+  // links that pass linksHit's pre-test (centre distance <= r_a + r_b + diagonal) then always have
+  // overlapping boxes even after rounding, so every pair the all-pairs loop would test in depth is
+  // a candidate here.
+  for (std::size_t i = 0; i < self_links_.size(); ++i) {
+    const LinkTree& lt = links_[static_cast<std::size_t>(self_links_[i])];
+    const Eigen::Vector3d c = scratch.robot.linkPose(lt.link) * lt.center_L;
+    const double r = (lt.radius + lt.source_diagonal) * (1 + 1e-9) + 1e-9;
+    const Eigen::Vector3d half = Eigen::Vector3d::Constant(r);
+    tree.move(static_cast<std::uint32_t>(i), {c - half, c + half});
+  }
+  const std::size_t m = self_links_.size();
+  bool hit = false;
+  tree.forEachCandidatePair([&](std::uint32_t a, std::uint32_t b) {
+    if (hit || !self_checked_[a * m + b]) return;
+    const LinkTree& la = links_[static_cast<std::size_t>(self_links_[a])];
+    const LinkTree& lb = links_[static_cast<std::size_t>(self_links_[b])];
+    hit = linksHit(la, scratch.robot.linkPose(la.link), lb, scratch.robot.linkPose(lb.link), path,
+                   scratch.fused);
+  });
+  return hit;
+}
+
+bool OctreeCollisionModel::selfPairsInCollision(CheckerPath path, CheckScratch& scratch) const {
   for (const auto& [sa, sb] : pairs_) {
     const LinkTree& a = links_[static_cast<std::size_t>(sa)];
     const LinkTree& b = links_[static_cast<std::size_t>(sb)];
@@ -368,6 +545,10 @@ bool OctreeCollisionModel::linksInCollision(CheckerPath path, CheckScratch& scra
   return false;
 }
 
+bool OctreeCollisionModel::linksInCollision(CheckerPath path, CheckScratch& scratch) const {
+  return environmentInCollision(path, scratch) || selfInCollision(path, scratch);
+}
+
 bool OctreeCollisionModel::inCollision(const double* q, std::size_t q_size,
                                        const Eigen::Isometry3d& X_WB, CheckerPath path,
                                        CheckScratch& scratch) const {
@@ -377,6 +558,36 @@ bool OctreeCollisionModel::inCollision(const double* q, std::size_t q_size,
 }
 
 double OctreeCollisionModel::clearanceLowerBound(const CheckScratch& scratch) const {
+  return options_.clearance == ClearanceMethod::kPointOctree ? clearanceLowerBoundPoints(scratch)
+                                                             : clearanceLowerBoundTree(scratch);
+}
+
+double OctreeCollisionModel::clearanceLowerBoundPoints(const CheckScratch& scratch) const {
+  if (clearance_levels_.empty()) return clearanceLowerBoundTree(scratch);
+  // For a clearance sphere (centre c, radius r) and a black cube of half diagonal h whose centre
+  // is at distance d from c, every point of the cube is at least d - h from c, so at least
+  // d - h - r from the sphere, which covers the link's black voxels. The minimum over levels and
+  // spheres, less the float slack, is therefore a lower bound on the distance between the links'
+  // voxels and the environment's; it is below kEnvironmentTree's by at most the nearest cube's h.
+  double best = std::numeric_limits<double>::infinity();
+  for (const LinkTree& lt : links_) {
+    if (!lt.touches_environment) continue;
+    const Eigen::Isometry3d& X_WL = scratch.robot.linkPose(lt.link);
+    for (const Eigen::Vector4d& s : lt.spheres_L) {
+      const Eigen::Vector3f c_W = (X_WL * Eigen::Vector3d(s.head<3>())).cast<float>();
+      for (const ClearanceLevel& level : clearance_levels_) {
+        // Only centres nearer than `beat` can lower the bound: the search prunes the rest.
+        const double margin = level.half_diagonal + s[3] + clearance_float_slack_;
+        const double d = level.centres.nearestDistance(c_W, best + margin) - margin;
+        best = std::min(best, d);
+      }
+      if (best <= 0) return 0;
+    }
+  }
+  return best;
+}
+
+double OctreeCollisionModel::clearanceLowerBoundTree(const CheckScratch& scratch) const {
   double best = std::numeric_limits<double>::infinity();
   for (const LinkTree& lt : links_) {
     if (!lt.touches_environment) continue;
@@ -414,8 +625,17 @@ std::string CollisionModelReport::toString() const {
         << " black leaves, " << l.source_bytes << " bytes, depth " << l.source_depth << ", radius "
         << l.radius << " m, " << l.build_seconds << " s\n";
   }
-  out << "self-collision pairs checked: " << self_pairs << "\nmodel built in " << build_seconds
-      << " s\n";
+  out << "environment pre-test: "
+      << (environment_pre_test == EnvironmentPreTest::kObjectBoxes
+              ? "object boxes (" + std::to_string(environment_object_boxes) + ")"
+              : std::string("environment box"))
+      << "\n";
+  out << "self-collision pairs checked: " << self_pairs << " among " << self_links
+      << " links; broad phase: " << selfBroadPhaseName(self_broad_phase);
+  if (self_links >= 2) {
+    out << " (auto picks the N-objects octree from " << kSelfBroadPhaseAutoLinks << " links)";
+  }
+  out << "\nmodel built in " << build_seconds << " s\n";
   return out.str();
 }
 

@@ -64,6 +64,9 @@ class PointOctree {
   // Distance from q to the nearest stored point (the clearance to the nearest obstacle point);
   // +infinity when the tree is empty.
   double nearestDistance(const Eigen::Vector3f& q) const;
+  // The same when it is below `upper_bound`; otherwise some value >= upper_bound (cells farther
+  // than the bound are never visited: the fast form for "is anything nearer than this?").
+  double nearestDistance(const Eigen::Vector3f& q, double upper_bound) const;
 
   std::size_t size() const { return nodes_.empty() ? 0 : nodes_[0].count; }
   bool empty() const { return size() == 0; }

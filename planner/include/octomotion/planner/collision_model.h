@@ -3,7 +3,10 @@
 // CheckScratch per thread. Each link is voxelized once, in its own frame, into a source tree;
 // every query derives the link's placement from that source tree and the link's pose (never from
 // a previous placement), then tests it against the environment tree and against the other
-// links' source trees (self-collision, in the other link's frame).
+// links' source trees (self-collision, in the other link's frame). Robots with many links find
+// their self pairs with the N-objects octree broad phase (SelfBroadPhase), scenes with scattered
+// objects pre-test links against the objects' boxes (EnvironmentPreTest), and clearance uses
+// point octrees of the environment's black leaves (ClearanceMethod): docs/planner.md.
 #pragma once
 
 #include <cstdint>
@@ -14,11 +17,13 @@
 
 #include <Eigen/Geometry>
 
+#include "octomotion/broadphase/n_objects_octree.h"
 #include "octomotion/motion/collides.h"
 #include "octomotion/octree/octree.h"
 #include "octomotion/octree/rounding.h"
 #include "octomotion/planner/environment.h"
 #include "octomotion/planner/robot_model.h"
+#include "octomotion/pointcloud/point_octree.h"
 
 namespace octomotion {
 
@@ -26,6 +31,44 @@ namespace octomotion {
 // (b) the fused query: both at once, without materialising the moved tree.
 enum class CheckerPath { kMoveTree, kFused };
 CheckerPath checkerPathFromName(const std::string& name);  // "octree" | "octree-fused"
+
+// How selfInCollision finds the link pairs worth a tree-vs-tree test:
+// kPairs: every checked (SRDF-enabled) pair, each with a bounding-sphere pre-test;
+// kNObjectsOctree: an N-objects octree broad phase (broadphase/n_objects_octree.h) over the
+//   links' world boxes, rebuilt incrementally per check in the per-thread CheckScratch; only its
+//   overlapping candidates that are checked pairs get the sphere and tree tests;
+// kAuto: kNObjectsOctree when at least kSelfBroadPhaseAutoLinks links take part in self pairs,
+//   else kPairs. Both give exactly the same answers (tests/planner/self_broadphase_test.cpp).
+enum class SelfBroadPhase { kAuto, kPairs, kNObjectsOctree };
+const char* selfBroadPhaseName(SelfBroadPhase strategy);
+// Measured with bench/planner_selfcollision_bench.cpp (docs/planner.md, "Self-collision broad
+// phase"): from 20 links the broad phase beats the all-pairs loop in every run (20 links: 1.05 vs
+// 1.29 us, 100 links: 9.8 vs 36 us per check); at 16 they tie, at 6 the loop is 3x faster.
+inline constexpr int kSelfBroadPhaseAutoLinks = 20;
+// Leaf capacity N of the self-collision broad phase: unlimited, i.e. one leaf and the octree's
+// vectorised all-pairs box kernel (report §1.4). Subdividing (N = 8, 16, 64) never paid off up to
+// 100 links: with uniform random states every link jumps each check, so re-inserting costs more
+// than the box tests it saves (100 links: N = 16 24.2 us, N = 64 16.6 us, unlimited 9.8 us).
+inline constexpr std::uint32_t kSelfBroadPhaseLeafCapacity = broadphase::NObjectsOctree::kUnlimited;
+
+// Which links the environment half of a check sends to the environment tree (docs/planner.md,
+// "Many environment objects"): kEnvironmentBox: those whose bounding sphere meets the box of all
+// black voxels; kObjectBoxes: those whose sphere meets some object's own box (a loop over the
+// objects' boxes, so scattered objects no longer make every link test the tree); kAuto:
+// kObjectBoxes for 2 ... kObjectBoxesMaxObjects objects. The tree stays one merged octree either
+// way: per-object trees lost at every count from 50 objects on (bench/planner_environment_bench).
+enum class EnvironmentPreTest { kAuto, kEnvironmentBox, kObjectBoxes };
+// Measured: object boxes win up to 100 objects (10: 0.07 vs 1.5 us, 100: 1.7 vs 3.1 us per
+// check), tie at 250 and lose at 500 (4.6 vs 3.2 us).
+inline constexpr std::size_t kObjectBoxesMaxObjects = 128;
+
+// How clearanceLowerBound finds each clearance sphere's nearest obstacle:
+// kEnvironmentTree: branch and bound over the environment octree's black leaves (exact box
+//   distance to the nearest black voxel);
+// kPointOctree: nearest-point queries in PointOctrees of the black leaves' centres, one tree per
+//   leaf level, minus that level's half cube diagonal (looser by at most that half diagonal:
+//   0.87 voxel for single voxels). See docs/planner.md, "Clearance".
+enum class ClearanceMethod { kEnvironmentTree, kPointOctree };
 
 // A fresh process-unique id for a model (see OctreeCollisionModel::id).
 std::uint64_t nextModelId();
@@ -46,6 +89,10 @@ struct CollisionModelOptions {
   // surface, estimated from its bounding box, would exceed this many voxels: a typo such as a
   // micrometre resolution must not exhaust the machine. 2e8 surface voxels is about 0.5 GB.
   double max_surface_voxels = 2e8;
+  SelfBroadPhase self_broad_phase = SelfBroadPhase::kAuto;
+  ClearanceMethod clearance = ClearanceMethod::kPointOctree;
+  EnvironmentPreTest environment_pre_test = EnvironmentPreTest::kAuto;
+  std::uint32_t self_broad_phase_leaf_capacity = kSelfBroadPhaseLeafCapacity;  // N (>= 1)
   WarningSink warnings;
 };
 
@@ -67,14 +114,20 @@ struct CollisionModelReport {
   EnvironmentReport environment;
   std::vector<LinkReport> links;
   std::size_t self_pairs = 0;
+  std::size_t self_links = 0;  // links taking part in at least one self pair
+  SelfBroadPhase self_broad_phase = SelfBroadPhase::kPairs;  // resolved (never kAuto)
+  EnvironmentPreTest environment_pre_test = EnvironmentPreTest::kEnvironmentBox;  // resolved
+  std::size_t environment_object_boxes = 0;  // object boxes the pre-test loops over
   double build_seconds = 0;
   std::string toString() const;  // the human-readable "what was modelled" summary
 };
 
-// Per-thread scratch for queries: FK results and the fused query's buffers. One per thread.
+// Per-thread scratch for queries: FK results, the fused query's buffers and (kNObjectsOctree)
+// the self-collision broad phase's octree, whose links move with every check. One per thread.
 struct CheckScratch {
   RobotData robot;
   CollisionScratch fused;
+  std::optional<broadphase::NObjectsOctree> self_broad_phase;
   std::uint64_t owner = 0;  // id() of the model it was made for
 };
 
@@ -104,11 +157,33 @@ class OctreeCollisionModel {
                    CheckerPath path, CheckScratch& scratch) const;
   // The same tests on link poses already in the scratch (after forwardKinematics).
   bool linksInCollision(CheckerPath path, CheckScratch& scratch) const;
+  // Its two halves: links against the environment only, and the checked self pairs only.
+  bool environmentInCollision(CheckerPath path, CheckScratch& scratch) const;
+  bool selfInCollision(CheckerPath path, CheckScratch& scratch) const;
+  // The strategy selfInCollision uses (options' choice, kAuto resolved by link count).
+  SelfBroadPhase selfBroadPhase() const { return report_.self_broad_phase; }
 
   // A lower bound on the distance between the robot (at the poses in the scratch) and the
   // environment's black voxels; 0 when in contact. See docs: it is loose by up to the link's
   // source-voxel diagonal plus the spread of the link's bounding spheres.
+  // Uses options' ClearanceMethod; the two below force one (kPointOctree falls back to the tree
+  // when the model was built with kEnvironmentTree, which does not build the point trees).
   double clearanceLowerBound(const CheckScratch& scratch) const;
+  double clearanceLowerBoundTree(const CheckScratch& scratch) const;
+  double clearanceLowerBoundPoints(const CheckScratch& scratch) const;
+
+  // Read-only view of a modelled link's source tree (in its link frame L), for viewers and
+  // exports: moveTree(*source, X_WL, grid(), rounding()) is the link's placement at pose X_WL.
+  struct LinkSourceTree {
+    int link = -1;                   // index in robot().links()
+    const Octree* source = nullptr;  // owned by the model
+  };
+  std::vector<LinkSourceTree> linkSourceTrees() const {
+    std::vector<LinkSourceTree> trees;
+    trees.reserve(links_.size());
+    for (const LinkTree& lt : links_) trees.push_back({lt.link, &lt.source});
+    return trees;
+  }
 
  private:
   struct LinkTree {
@@ -117,6 +192,7 @@ class OctreeCollisionModel {
     std::unique_ptr<const MovableSource> movable;  // the source prepared for the fused query
     Eigen::Vector3d center_L;                      // bounding sphere of the black voxels
     double radius = 0;
+    double source_diagonal = 0;              // of one source voxel (metres)
     bool touches_environment = true;         // false: cannot reach the modelled environment
     std::vector<Eigen::Vector4d> spheres_L;  // coarse cover of the black voxels (clearance)
   };
@@ -125,15 +201,32 @@ class OctreeCollisionModel {
                            CollisionScratch& fused) const;
   bool linksHit(const LinkTree& a, const Eigen::Isometry3d& X_WA, const LinkTree& b,
                 const Eigen::Isometry3d& X_WB, CheckerPath path, CollisionScratch& fused) const;
+  bool selfPairsInCollision(CheckerPath path, CheckScratch& scratch) const;
+  bool selfBroadPhaseInCollision(CheckerPath path, CheckScratch& scratch) const;
+  broadphase::NObjectsOctree makeSelfBroadPhase() const;
 
   std::uint64_t id_;
   RobotModel robot_;
   CollisionModelOptions options_;
   Octree environment_;
-  Eigen::AlignedBox3d environment_box_W_;   // world box of the environment's black voxels
+  Eigen::AlignedBox3d environment_box_W_;  // world box of the environment's black voxels
+  // kObjectBoxes: each object's box grown by a voxel (so it holds the object's black voxels).
+  std::vector<Eigen::AlignedBox3d> object_boxes_W_;
   std::vector<LinkTree> links_;             // modelled links only
   std::vector<int> link_slot_;              // robot link index -> index in links_, or -1
   std::vector<std::pair<int, int>> pairs_;  // self pairs, as indices into links_
+  // Self broad phase: object id i is links_[self_links_[i]] (increasing slots, so a < b ids keep
+  // the pairs' order); self_checked_[a * self_links_.size() + b] for ids a < b: a checked pair.
+  // Clearance (kPointOctree): the environment's black leaves of one level, as cube centres.
+  struct ClearanceLevel {
+    double half_diagonal = 0;  // of that level's cubes (metres)
+    pointcloud::PointOctree centres;
+  };
+  std::vector<ClearanceLevel> clearance_levels_;
+  double clearance_float_slack_ = 0;  // covers float rounding of centres and distances
+  std::vector<int> self_links_;
+  std::vector<std::uint8_t> self_checked_;
+  Eigen::AlignedBox3d self_root_box_W_;  // the broad phase's root: everything links can reach
   CollisionModelReport report_;
 };
 

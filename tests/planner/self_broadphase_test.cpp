@@ -1,0 +1,214 @@
+// The self-collision broad phase (SelfBroadPhase::kNObjectsOctree: an N-objects octree over the
+// links' world boxes, after the N-objects octree report §2) must give exactly the answers of the
+// all-pairs loop (kPairs), for both checker paths, on long chain robots, including SRDF-style
+// filters that disable some of the pairs the broad phase reports; and stay per-thread.
+#include <gtest/gtest.h>
+
+#include <random>
+#include <sstream>
+#include <thread>
+
+#include "octomotion/planner/collision_model.h"
+
+namespace octomotion {
+namespace {
+
+// A snake of `links` box links (8 x 4 x 4 cm on a 10 cm pitch), joints alternating about z and
+// y, each limited to +-limit rad: curled states touch themselves, straight-ish ones do not.
+std::string snakeUrdf(int links, double limit) {
+  std::ostringstream u;
+  u << "<robot name=\"snake" << links << "\">\n";
+  for (int i = 0; i < links; ++i) {
+    u << "<link name=\"l" << i << "\"><collision><origin xyz=\"0.05 0 0\"/><geometry>"
+      << "<box size=\"0.08 0.04 0.04\"/></geometry></collision></link>\n";
+  }
+  for (int i = 1; i < links; ++i) {
+    u << "<joint name=\"j" << i << "\" type=\"revolute\"><parent link=\"l" << i - 1
+      << "\"/><child link=\"l" << i << "\"/><origin xyz=\"0.1 0 0\"/><axis xyz=\""
+      << (i % 2 ? "0 0 1" : "0 1 0") << "\"/><limit lower=\"" << -limit << "\" upper=\"" << limit
+      << "\" effort=\"1\" velocity=\"1\"/></joint>\n";
+  }
+  u << "</robot>\n";
+  return u.str();
+}
+
+RobotModel snake(int links, double limit) {
+  return RobotModel::fromUrdfString(snakeUrdf(links, limit), "snake.urdf", ".");
+}
+
+std::shared_ptr<const OctreeCollisionModel> model(
+    RobotModel robot, SelfBroadPhase strategy,
+    std::uint32_t leaf_capacity = kSelfBroadPhaseLeafCapacity) {
+  CollisionModelOptions o;
+  o.resolution = 0.01;
+  o.self_broad_phase = strategy;
+  o.self_broad_phase_leaf_capacity = leaf_capacity;
+  static const EnvironmentGeometry empty = EnvironmentGeometry::load({});
+  return std::make_shared<const OctreeCollisionModel>(std::move(robot), empty, o);
+}
+
+std::vector<std::vector<double>> randomStates(const RobotModel& robot, int count,
+                                              std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::vector<std::vector<double>> states;
+  for (int k = 0; k < count; ++k) {
+    std::vector<double> q;
+    for (const Variable& v : robot.variables()) {
+      q.push_back(std::uniform_real_distribution<double>(v.lower, v.upper)(rng));
+    }
+    states.push_back(std::move(q));
+  }
+  return states;
+}
+
+std::vector<char> selfAnswers(const OctreeCollisionModel& m,
+                              const std::vector<std::vector<double>>& states, CheckerPath path) {
+  CheckScratch scratch = m.makeScratch();
+  std::vector<char> hits;
+  for (const auto& q : states) {
+    m.robot().forwardKinematics(q.data(), q.size(), scratch.robot);
+    hits.push_back(m.selfInCollision(path, scratch));
+  }
+  return hits;
+}
+
+// leaf_capacity: the default (one leaf) and small N, which splits the octree into many leaves
+// (pairs spanning several leaves are reported once, by the leaf owning their overlap's corner).
+void expectSameAnswers(RobotModel robot, int states_count, std::uint64_t seed,
+                       std::uint32_t leaf_capacity) {
+  const auto pairs = model(robot, SelfBroadPhase::kPairs);
+  const auto octree = model(robot, SelfBroadPhase::kNObjectsOctree, leaf_capacity);
+  ASSERT_EQ(pairs->selfBroadPhase(), SelfBroadPhase::kPairs);
+  ASSERT_EQ(octree->selfBroadPhase(), SelfBroadPhase::kNObjectsOctree);
+  const auto states = randomStates(robot, states_count, seed);
+  for (const CheckerPath path : {CheckerPath::kFused, CheckerPath::kMoveTree}) {
+    const std::vector<char> expected = selfAnswers(*pairs, states, path);
+    const std::vector<char> got = selfAnswers(*octree, states, path);
+    const auto hits = std::count(expected.begin(), expected.end(), 1);
+    // Both answers must occur often, or the comparison says little.
+    EXPECT_GT(hits, states_count / 10);
+    EXPECT_LT(hits, states_count - states_count / 10);
+    for (std::size_t i = 0; i < states.size(); ++i) {
+      ASSERT_EQ(got[i], expected[i]) << "state " << i << " path " << static_cast<int>(path);
+    }
+  }
+}
+
+TEST(SelfBroadPhase, OctreeMatchesAllPairsOn30LinkSnake) {
+  expectSameAnswers(snake(30, 2.0), 3000, 7, kSelfBroadPhaseLeafCapacity);
+}
+
+TEST(SelfBroadPhase, SubdividedOctreeMatchesAllPairsOn30LinkSnake) {
+  expectSameAnswers(snake(30, 2.0), 2000, 8, 4);
+  expectSameAnswers(snake(30, 2.0), 1500, 9, 16);
+}
+
+TEST(SelfBroadPhase, OctreeMatchesAllPairsWithPairsDisabled) {
+  // Disabling every (i, i+2) and (i, i+3) pair: the broad phase reports such overlapping pairs
+  // (they are close), and they must be skipped exactly as the all-pairs loop skips them.
+  RobotModel robot = snake(26, 2.2);
+  for (int i = 0; i + 3 < robot.linkCount(); ++i) {
+    robot.disableCollision(i, i + 2);
+    robot.disableCollision(i, i + 3);
+  }
+  expectSameAnswers(robot, 2000, 11, kSelfBroadPhaseLeafCapacity);
+  expectSameAnswers(std::move(robot), 2000, 12, 4);
+}
+
+TEST(SelfBroadPhase, AutoFollowsTheMeasuredLinkThreshold) {
+  const int at = kSelfBroadPhaseAutoLinks;
+  EXPECT_EQ(model(snake(at - 1, 1.0), SelfBroadPhase::kAuto)->selfBroadPhase(),
+            SelfBroadPhase::kPairs);
+  const auto big = model(snake(at, 1.0), SelfBroadPhase::kAuto);
+  EXPECT_EQ(big->selfBroadPhase(), SelfBroadPhase::kNObjectsOctree);
+  EXPECT_EQ(big->report().self_links, static_cast<std::size_t>(at));
+  EXPECT_NE(big->report().toString().find("N-objects octree"), std::string::npos);
+}
+
+TEST(SelfBroadPhase, ScratchWithoutBroadPhaseStillWorks) {
+  // A default-constructed scratch (no octree yet) gets one on first use.
+  const RobotModel robot = snake(24, 1.2);
+  const auto octree = model(robot, SelfBroadPhase::kNObjectsOctree);
+  const auto pairs = model(robot, SelfBroadPhase::kPairs);
+  const auto states = randomStates(robot, 200, 3);
+  CheckScratch scratch;
+  scratch.robot = robot.makeData();
+  CheckScratch reference = pairs->makeScratch();
+  for (const auto& q : states) {
+    robot.forwardKinematics(q.data(), q.size(), scratch.robot);
+    robot.forwardKinematics(q.data(), q.size(), reference.robot);
+    EXPECT_EQ(octree->selfInCollision(CheckerPath::kFused, scratch),
+              pairs->selfInCollision(CheckerPath::kFused, reference));
+  }
+  EXPECT_TRUE(scratch.self_broad_phase.has_value());
+}
+
+TEST(SelfBroadPhase, ThreadsWithTheirOwnScratchAgree) {
+  const RobotModel robot = snake(40, 1.2);
+  const auto octree = model(robot, SelfBroadPhase::kNObjectsOctree);
+  const auto states = randomStates(robot, 601, 5);  // prime: every stride visits all
+  const std::vector<char> expected =
+      selfAnswers(*model(robot, SelfBroadPhase::kPairs), states, CheckerPath::kFused);
+  const int threads = 4;
+  std::vector<std::vector<char>> got(threads, std::vector<char>(states.size()));
+  std::vector<std::thread> pool;
+  for (int t = 0; t < threads; ++t) {
+    pool.emplace_back([&, t] {
+      CheckScratch scratch = octree->makeScratch();
+      const std::size_t n = states.size();
+      for (std::size_t k = 0; k < n; ++k) {
+        const std::size_t i = (k * static_cast<std::size_t>(2 * t + 1) + 7) % n;
+        got[static_cast<std::size_t>(t)][i] =
+            octree->inCollision(states[i].data(), states[i].size(), Eigen::Isometry3d::Identity(),
+                                CheckerPath::kFused, scratch);
+      }
+    });
+  }
+  for (auto& th : pool) th.join();
+  for (int t = 0; t < threads; ++t) EXPECT_EQ(got[static_cast<std::size_t>(t)], expected);
+}
+
+// The environment pre-test over the objects' own boxes (EnvironmentPreTest::kObjectBoxes) only
+// skips links that cannot touch any object: same answers as the single environment box.
+TEST(EnvironmentPreTest, ObjectBoxesMatchEnvironmentBox) {
+  std::mt19937_64 rng(21);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::vector<EnvironmentObject> objects;
+  for (int i = 0; i < 30; ++i) {
+    EnvironmentObject box;
+    box.name = "box" + std::to_string(i);
+    box.primitive =
+        Box{Eigen::Vector3d(0.01 + 0.03 * std::abs(u(rng)), 0.01 + 0.03 * std::abs(u(rng)), 0.02)};
+    box.X_WO.linear() = Eigen::Quaterniond(u(rng), u(rng), u(rng), u(rng)).normalized().matrix();
+    box.X_WO.translation() = 0.6 * Eigen::Vector3d(u(rng), u(rng), u(rng));
+    objects.push_back(box);
+  }
+  const EnvironmentGeometry env = EnvironmentGeometry::load(objects);
+  const RobotModel robot = snake(7, 1.5);
+  CollisionModelOptions o;
+  o.resolution = 0.01;
+  const OctreeCollisionModel automatic(robot, env, o);
+  EXPECT_EQ(automatic.report().environment_pre_test, EnvironmentPreTest::kObjectBoxes);
+  EXPECT_EQ(automatic.report().environment_object_boxes, objects.size());
+  o.environment_pre_test = EnvironmentPreTest::kEnvironmentBox;
+  const OctreeCollisionModel merged_box(robot, env, o);
+  EXPECT_EQ(merged_box.report().environment_pre_test, EnvironmentPreTest::kEnvironmentBox);
+  const auto states = randomStates(robot, 2000, 4);
+  for (const CheckerPath path : {CheckerPath::kFused, CheckerPath::kMoveTree}) {
+    CheckScratch a = automatic.makeScratch(), b = merged_box.makeScratch();
+    int hits = 0;
+    for (std::size_t i = 0; i < states.size(); ++i) {
+      const auto& q = states[i];
+      robot.forwardKinematics(q.data(), q.size(), a.robot);
+      robot.forwardKinematics(q.data(), q.size(), b.robot);
+      const bool expected = merged_box.environmentInCollision(path, b);
+      ASSERT_EQ(automatic.environmentInCollision(path, a), expected) << "state " << i;
+      hits += expected;
+    }
+    EXPECT_GT(hits, 200);
+    EXPECT_LT(hits, 1800);
+  }
+}
+
+}  // namespace
+}  // namespace octomotion
