@@ -42,6 +42,10 @@ bool parseSceneOption(const std::string& arg, const std::function<std::string()>
     overrides.rounding = roundingFromString(value().c_str());
   } else if (arg == "--checker") {
     overrides.checker = checkerName(value());
+  } else if (arg == "--max-surface-voxels") {
+    const double n = parseNumber(arg, value());
+    if (!(n > 0)) throw InvalidArgument("--max-surface-voxels: must be > 0");
+    overrides.max_surface_voxels = n;
   } else if (arg == "--package-path") {
     overrides.package_paths.push_back(value());
   } else {

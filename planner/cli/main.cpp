@@ -35,6 +35,7 @@ options:
   --rounding conservative|center
   --checker octree|octree-fused|fcl|fcl-octomap
   --package-path DIR         extra package:// search path (repeatable)
+  --max-surface-voxels N     fail early when a tree would need more voxels (default 2e8)
   --interpolation METRES     plan: spacing of the written path's states (default: OMPL's)
   --verbose                  OMPL's log messages on stderr
 )";

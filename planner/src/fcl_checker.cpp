@@ -1,82 +1,49 @@
 #include "octomotion/planner/fcl_checker.h"
 
 #include <limits>
-#include <map>
 
-#include <fcl/geometry/bvh/BVH_model.h>
-#include <fcl/geometry/shape/box.h>
-#include <fcl/geometry/shape/cylinder.h>
-#include <fcl/geometry/shape/sphere.h>
-#include <fcl/math/bv/OBBRSS.h>
+#include <fcl/broadphase/broadphase_dynamic_AABB_tree.h>
 #include <fcl/narrowphase/collision.h>
-#include <fcl/narrowphase/collision_object.h>
 #include <fcl/narrowphase/distance.h>
 #include <ompl/base/SpaceInformation.h>
 
-#include "octomotion/octree/mesh.h"
+#include "fcl_robot.h"
 #include "octomotion/planner/octree_validity_checker.h"
 
 namespace octomotion {
 
-namespace {
-
-using Geom = std::shared_ptr<fcl::CollisionGeometryd>;
-
-Geom shapeOf(const Primitive& p) {
-  if (const auto* b = std::get_if<Box>(&p)) {
-    const Eigen::Vector3d size = 2 * b->half_extents;
-    return std::make_shared<fcl::Boxd>(size.x(), size.y(), size.z());
-  }
-  if (const auto* s = std::get_if<Sphere>(&p)) return std::make_shared<fcl::Sphered>(s->radius);
-  const auto& c = std::get<Cylinder>(p);
-  return std::make_shared<fcl::Cylinderd>(c.radius, c.length);
-}
-
-Geom meshOf(const TriangleMesh& mesh) {
-  auto model = std::make_shared<fcl::BVHModel<fcl::OBBRSSd>>();
-  std::vector<fcl::Triangle> triangles;
-  triangles.reserve(mesh.triangles.size());
-  for (const auto& t : mesh.triangles) triangles.emplace_back(t[0], t[1], t[2]);
-  model->beginModel();
-  model->addSubModel(mesh.vertices, triangles);
-  model->endModel();
-  model->computeLocalAABB();
-  return model;
-}
-
-}  // namespace
+using fcl_internal::Geom;
 
 struct FclCollisionModel::Geometry {
-  struct Element {
-    int link;
-    Geom geometry;
-    Eigen::Isometry3d X_LE;
-  };
+  explicit Geometry(const RobotModel& model, bool keep_mesh_root_transform,
+                    bool center_mesh_vertices)
+      : robot(model, keep_mesh_root_transform, center_mesh_vertices) {}
+  fcl_internal::RobotGeometry robot;
   std::vector<std::unique_ptr<fcl::CollisionObjectd>> environment;
-  std::vector<Element> elements;
-  std::vector<std::vector<int>> link_elements;  // link -> indices into elements
-  // One object per element, made once: FCL's CollisionObject constructor writes to the shared
-  // geometry (computeLocalAABB), so threads copy these instead of constructing their own.
-  std::vector<fcl::CollisionObjectd> prototypes;
+  // Broad phase over the environment objects, built once; queries only read it.
+  fcl::DynamicAABBTreeCollisionManagerd environment_manager;
 };
 
 struct FclCollisionModel::Scratch {
-  RobotData robot;
-  std::vector<fcl::CollisionObjectd> objects;  // one per element, posed in the world
+  fcl_internal::RobotScratch robot;
 };
 
 FclCollisionModel::FclCollisionModel(const RobotModel& robot,
                                      const EnvironmentGeometry& environment,
                                      bool keep_mesh_root_transform, bool center_mesh_vertices)
-    : id_(nextModelId()), robot_(robot), geometry_(std::make_unique<Geometry>()) {
+    : id_(nextModelId()),
+      robot_(robot),
+      geometry_(
+          std::make_unique<Geometry>(robot_, keep_mesh_root_transform, center_mesh_vertices)) {
+  std::vector<fcl::CollisionObjectd*> objects;
   for (const EnvironmentGeometry::Item& item : environment.items()) {
     Geom g;
     switch (item.spec.kind) {
       case EnvironmentObject::Kind::kPrimitive:
-        g = shapeOf(item.spec.primitive);
+        g = fcl_internal::shapeOf(item.spec.primitive);
         break;
       case EnvironmentObject::Kind::kMesh:
-        g = meshOf(item.mesh);
+        g = fcl_internal::meshOf(item.mesh);
         break;
       default:
         throw InvalidArgument(item.spec.name +
@@ -85,36 +52,13 @@ FclCollisionModel::FclCollisionModel(const RobotModel& robot,
     }
     auto object = std::make_unique<fcl::CollisionObjectd>(g, item.spec.X_WO.rotation(),
                                                           item.spec.X_WO.translation());
-    object->computeAABB();
+    fcl_internal::setTightAabb(*object);
+    objects.push_back(object.get());
     geometry_->environment.push_back(std::move(object));
   }
-  std::map<std::string, Geom> meshes;
-  geometry_->link_elements.resize(static_cast<std::size_t>(robot_.linkCount()));
-  for (int l = 0; l < robot_.linkCount(); ++l) {
-    for (const CollisionElement& e : robot_.link(l).collision) {
-      Geom g;
-      if (const auto* p = std::get_if<Primitive>(&e.geometry)) {
-        g = shapeOf(*p);
-      } else {
-        const auto& ref = std::get<MeshRef>(e.geometry);
-        const std::string key = ref.path + "|" + std::to_string(ref.scale.x()) + "," +
-                                std::to_string(ref.scale.y()) + "," + std::to_string(ref.scale.z());
-        auto it = meshes.find(key);
-        if (it == meshes.end()) {
-          MeshLoadOptions options;
-          options.keep_root_transform = keep_mesh_root_transform;
-          options.scale = ref.scale;
-          TriangleMesh mesh = loadMesh(ref.path, options);
-          if (center_mesh_vertices) centerOnVertexMean(mesh);
-          it = meshes.emplace(key, meshOf(mesh)).first;
-        }
-        g = it->second;
-      }
-      geometry_->link_elements[static_cast<std::size_t>(l)].push_back(
-          static_cast<int>(geometry_->elements.size()));
-      geometry_->elements.push_back({l, g, e.X_LE});
-      geometry_->prototypes.emplace_back(g);
-    }
+  if (!objects.empty()) {
+    geometry_->environment_manager.registerObjects(objects);
+    geometry_->environment_manager.setup();
   }
 }
 
@@ -127,57 +71,88 @@ void FclCollisionModel::ScratchDeleter::operator()(Scratch* s) const {
 
 FclCollisionModel::ScratchPtr FclCollisionModel::makeScratch() const {
   ScratchPtr s(new Scratch);
-  s->robot = robot_.makeData();
-  s->objects = geometry_->prototypes;
+  geometry_->robot.initScratch(robot_, s->robot);
   return s;
 }
 
 void FclCollisionModel::setConfiguration(const double* q, std::size_t q_size,
                                          const Eigen::Isometry3d& X_WB, Scratch& s) const {
-  robot_.forwardKinematics(q, q_size, s.robot, X_WB);
-  for (std::size_t i = 0; i < geometry_->elements.size(); ++i) {
-    const Geometry::Element& e = geometry_->elements[i];
-    const Eigen::Isometry3d X_WE = s.robot.linkPose(e.link) * e.X_LE;
-    s.objects[i].setTransform(X_WE.rotation(), X_WE.translation());
-    s.objects[i].computeAABB();
-  }
+  geometry_->robot.pose(robot_, q, q_size, X_WB, s.robot);
 }
 
-bool FclCollisionModel::inCollision(Scratch& s) const {
-  fcl::CollisionRequestd request;
-  fcl::CollisionResultd result;
-  for (fcl::CollisionObjectd& link_object : s.objects) {
-    for (const auto& env : geometry_->environment) {
-      result.clear();
-      if (fcl::collide(&link_object, env.get(), request, result) > 0) return true;
-    }
-  }
-  for (const auto& [a, b] : robot_.checkedPairs()) {
-    for (int ea : geometry_->link_elements[static_cast<std::size_t>(a)]) {
-      for (int eb : geometry_->link_elements[static_cast<std::size_t>(b)]) {
-        result.clear();
-        if (fcl::collide(&s.objects[static_cast<std::size_t>(ea)],
-                         &s.objects[static_cast<std::size_t>(eb)], request, result) > 0) {
-          return true;
-        }
-      }
-    }
+namespace {
+
+struct BroadPhaseQuery {
+  const fcl::CollisionRequestd* request;
+  fcl::CollisionResultd* result;
+  bool hit = false;
+};
+
+// Called by the broad phase for each environment object whose AABB overlaps the link's.
+bool narrowPhase(fcl::CollisionObjectd* a, fcl::CollisionObjectd* b, void* data) {
+  auto& query = *static_cast<BroadPhaseQuery*>(data);
+  query.result->clear();
+  query.hit = fcl::collide(a, b, *query.request, *query.result) > 0;
+  return query.hit;  // stop at the first contact
+}
+
+}  // namespace
+
+bool FclCollisionModel::environmentInCollision(Scratch& s) const {
+  if (geometry_->environment.empty()) return false;
+  BroadPhaseQuery query{&s.robot.request, &s.robot.result};
+  for (fcl::CollisionObjectd& link_object : s.robot.objects) {
+    geometry_->environment_manager.collide(&link_object, &query, narrowPhase);
+    if (query.hit) return true;
   }
   return false;
 }
 
-double FclCollisionModel::environmentDistance(Scratch& s) const {
-  double best = std::numeric_limits<double>::infinity();
+bool FclCollisionModel::selfInCollision(Scratch& s) const {
+  return geometry_->robot.selfInCollision(s.robot);
+}
+
+bool FclCollisionModel::inCollision(Scratch& s) const {
+  return environmentInCollision(s) || selfInCollision(s);
+}
+
+namespace {
+
+struct DistanceQuery {
   fcl::DistanceRequestd request;
-  for (fcl::CollisionObjectd& link_object : s.objects) {
-    for (const auto& env : geometry_->environment) {
-      fcl::DistanceResultd result;
-      fcl::distance(&link_object, env.get(), request, result);
-      best = std::min(best, std::max(0.0, result.min_distance));
-      if (best <= 0) return 0;
-    }
+  fcl::DistanceResultd result;
+  double best;
+};
+
+// Called by the broad phase for each environment object whose AABB is nearer than the best
+// distance so far (FCL's recursion prunes with the value written to `dist`).
+bool distanceNarrowPhase(fcl::CollisionObjectd* a, fcl::CollisionObjectd* b, void* data,
+                         double& dist) {
+  auto& query = *static_cast<DistanceQuery*>(data);
+  if (a->getAABB().distance(b->getAABB()) < query.best) {
+    query.result.clear();
+    fcl::distance(a, b, query.request, query.result);
+    query.best = std::min(query.best, std::max(0.0, query.result.min_distance));
   }
-  return best;
+  dist = query.best;
+  return query.best <= 0;  // stop at contact
+}
+
+}  // namespace
+
+double FclCollisionModel::environmentDistance(Scratch& s, double cap) const {
+  if (geometry_->environment.empty()) return std::numeric_limits<double>::infinity();
+  DistanceQuery query;
+  query.best = cap;
+  for (fcl::CollisionObjectd& link_object : s.robot.objects) {
+    geometry_->environment_manager.distance(&link_object, &query, distanceNarrowPhase);
+    if (query.best <= 0) return 0;
+  }
+  return query.best;
+}
+
+double FclCollisionModel::selfDistance(Scratch& s, double cap) const {
+  return geometry_->robot.selfDistance(s.robot, cap);
 }
 
 namespace {

@@ -33,6 +33,11 @@ namespace og = ompl::geometric;
 
 namespace {
 
+// How far (in environment voxels) any point of the robot may move between two checked states of
+// a motion. Conservative voxels inflate each surface by up to a voxel diagonal, so a step of two
+// voxels rarely lets a contact slip between checks (validation_planned_paths_test re-checks).
+constexpr double kMaxStepVoxels = 2.0;
+
 // The box of every link's collision geometry at the zero configuration, in the root frame.
 Eigen::AlignedBox3d geometryBox(const RobotModel& robot) {
   RobotData data = robot.makeData();
@@ -104,6 +109,7 @@ PlanningScene loadPlanningScene(const std::string& scene_path, const SceneOverri
   if (overrides.planner) spec.problem.planner = *overrides.planner;
   if (overrides.time) spec.problem.time = *overrides.time;
   if (overrides.seed) spec.problem.seed = *overrides.seed;
+  if (overrides.max_surface_voxels) spec.octree.max_surface_voxels = *overrides.max_surface_voxels;
   // Seed before OMPL creates any random number generator.
   if (spec.problem.seed) ompl::RNG::setSeed(*spec.problem.seed);
 
@@ -136,13 +142,15 @@ PlanningScene loadPlanningScene(const std::string& scene_path, const SceneOverri
 
   // The environment, and the region the problem lives in.
   // Errors in the files a scene names also name the scene.
-  const EnvironmentGeometry environment = [&] {
+  scene.environment = [&] {
     try {
-      return EnvironmentGeometry::load(spec.environment, warnings);
+      return std::make_shared<const EnvironmentGeometry>(
+          EnvironmentGeometry::load(spec.environment, warnings));
     } catch (const Error& e) {
       throw FileError(spec.path, e.what());
     }
   }();
+  const EnvironmentGeometry& environment = *scene.environment;
   Eigen::AlignedBox3d scene_box;
   if (const auto b = environment.bounds()) scene_box = *b;
   if (robot->isFreeFlying() && !spec.problem.bounds) {
@@ -163,26 +171,62 @@ PlanningScene loadPlanningScene(const std::string& scene_path, const SceneOverri
   options.resolution = *spec.octree.resolution;
   options.link_resolution = spec.octree.link_resolution;
   options.rounding = spec.octree.rounding;
+  if (spec.octree.max_surface_voxels) options.max_surface_voxels = *spec.octree.max_surface_voxels;
   options.base_position_bounds = spec.problem.bounds;
   options.keep_mesh_root_transform = spec.robot.keep_mesh_root_transform;
   options.center_mesh_vertices = spec.robot.center_mesh_vertices;
   options.warnings = warnings;
   const bool free_flying = robot->isFreeFlying();
-  scene.fcl_model = std::make_shared<const FclCollisionModel>(
-      *robot, environment, options.keep_mesh_root_transform, options.center_mesh_vertices);
   scene.model =
       std::make_shared<const OctreeCollisionModel>(std::move(*robot), environment, options);
   const RobotModel& model_robot = scene.model->robot();
+  // The references, lazily: they keep the octree model (for its robot) and the objects alive.
+  {
+    const std::shared_ptr<const OctreeCollisionModel> octree_model = scene.model;
+    const std::shared_ptr<const EnvironmentGeometry> objects = scene.environment;
+    const bool keep = options.keep_mesh_root_transform;
+    const bool center = options.center_mesh_vertices;
+    const double resolution = options.resolution;
+    scene.fcl_model = LazyModel<FclCollisionModel>([octree_model, objects, keep, center] {
+      return std::make_shared<const FclCollisionModel>(octree_model->robot(), *objects, keep,
+                                                       center);
+    });
+    scene.fcl_octomap_model =
+        LazyModel<FclOctomapCollisionModel>([octree_model, objects, keep, center, resolution] {
+          return std::make_shared<const FclOctomapCollisionModel>(octree_model->robot(), *objects,
+                                                                  resolution, keep, center);
+        });
+  }
 
   // OMPL.
   const Eigen::AlignedBox3d* bounds = free_flying ? &*spec.problem.bounds : nullptr;
   scene.setup = std::make_shared<og::SimpleSetup>(makeStateSpace(model_robot, bounds));
   const ob::SpaceInformationPtr& si = scene.setup->getSpaceInformation();
+  // Motions are checked state by state, so a collision between two checked states goes unseen
+  // unless the robot moves less than about one voxel between them. OMPL's default step (1% of
+  // the space's extent) moves an arm's tool by centimetres; bound the step instead so that no
+  // point of the robot moves more than kMaxStepVoxels environment voxels (docs/validation.md §4):
+  // arms: |dp| <= sum_j R |dq_j| <= R sqrt(n) |dq| (R: the robot's reach from its base);
+  // SE(3): |dp| <= |dt| + r theta = |dt| + 2 r d_SO3 <= max(1, 2 r) d (r: the body's size).
+  {
+    const double reach =
+        free_flying ? robot_diagonal : scene.model->report().reach_W.sizes().maxCoeff() / 2;
+    const double speed =
+        free_flying ? std::max(1.0, 2 * reach)
+                    : std::max(1e-9, reach * std::sqrt(std::max(1, model_robot.variableCount())));
+    const double extent = si->getStateSpace()->getMaximumExtent();
+    const double fraction = kMaxStepVoxels * options.resolution / speed / extent;
+    if (std::isfinite(fraction) && fraction > 0 &&
+        fraction < si->getStateValidityCheckingResolution()) {
+      si->setStateValidityCheckingResolution(fraction);
+    }
+  }
   scene.checker = spec.octree.checker;
   if (scene.checker == "fcl") {
     scene.setup->setStateValidityChecker(std::make_shared<FclValidityChecker>(si, scene.fcl_model));
   } else if (scene.checker == "fcl-octomap") {
-    throw InvalidArgument("checker 'fcl-octomap' is not built into this version of octomotion yet");
+    scene.setup->setStateValidityChecker(
+        std::make_shared<FclOctomapValidityChecker>(si, scene.fcl_octomap_model));
   } else {
     scene.setup->setStateValidityChecker(std::make_shared<OctreeValidityChecker>(
         si, scene.model, checkerPathFromName(scene.checker)));

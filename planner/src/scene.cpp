@@ -245,7 +245,8 @@ void parseEnvironment(const YamlReader& r, const YAML::Node& node, SceneSpec& sc
 }
 
 void parseOctree(const YamlReader& r, const YAML::Node& node, SceneSpec& scene) {
-  r.allowOnly(node, "octree", {"resolution", "link_resolution", "rounding", "checker"});
+  r.allowOnly(node, "octree",
+              {"resolution", "link_resolution", "rounding", "checker", "max_surface_voxels"});
   OctreeSettings& s = scene.octree;
   if (const YAML::Node res = node["resolution"]) {
     if (!(res.IsScalar() && res.Scalar() == "auto")) {
@@ -254,6 +255,9 @@ void parseOctree(const YamlReader& r, const YAML::Node& node, SceneSpec& scene) 
   }
   if (node["link_resolution"]) {
     s.link_resolution = r.positive(node["link_resolution"], "octree.link_resolution");
+  }
+  if (node["max_surface_voxels"]) {
+    s.max_surface_voxels = r.positive(node["max_surface_voxels"], "octree.max_surface_voxels");
   }
   if (node["rounding"]) {
     const std::string v = r.string(node["rounding"], "octree.rounding");

@@ -1,9 +1,16 @@
 // The exact reference: the same robot, self-collision pairs and environment checked with FCL
 // (meshes as BVHModel<OBBRSS>, primitives as FCL shapes). Used to validate the octree checker
-// and to measure the speed/accuracy trade against it in the same run.
+// and to measure the speed/accuracy trade against it in the same run, so it is written as a
+// careful FCL user would (MoveIt's FCL plugin does the same): the environment in a broad phase
+// (DynamicAABBTreeCollisionManager), tight world AABBs pre-tested before every narrow phase,
+// nothing allocated per query once a thread's scratch exists.
+//
+// FCL treats meshes as surfaces: a mesh swallowed whole by another mesh does not collide.
+// Primitives are solids.
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -35,8 +42,17 @@ class FclCollisionModel {
                         Scratch& scratch) const;
   // Environment contacts and checked self pairs at the scratch's configuration.
   bool inCollision(Scratch& scratch) const;
-  // Exact distance from the robot to the environment (0 in contact).
-  double environmentDistance(Scratch& scratch) const;
+  // Its two halves: links against the environment only, and the checked self pairs only.
+  bool environmentInCollision(Scratch& scratch) const;
+  bool selfInCollision(Scratch& scratch) const;
+  // Exact distance from the robot to the environment (0 in contact, +inf without environment).
+  // With a finite `cap`, any distance >= cap may be returned as cap: objects whose AABBs are
+  // that far apart are skipped, so a cap makes "is it within cap?" cheap.
+  double environmentDistance(Scratch& scratch,
+                             double cap = std::numeric_limits<double>::infinity()) const;
+  // Exact smallest distance between the links of the checked self pairs (0 in contact, +inf
+  // without pairs); `cap` as above.
+  double selfDistance(Scratch& scratch, double cap = std::numeric_limits<double>::infinity()) const;
 
   const RobotModel& robot() const { return robot_; }
   std::uint64_t id() const { return id_; }  // see OctreeCollisionModel::id

@@ -4,7 +4,9 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
@@ -15,6 +17,7 @@
 
 #include "octomotion/planner/collision_model.h"
 #include "octomotion/planner/fcl_checker.h"
+#include "octomotion/planner/fcl_octomap_checker.h"
 #include "octomotion/planner/scene.h"
 
 namespace octomotion {
@@ -29,6 +32,7 @@ struct SceneOverrides {
   std::optional<double> time;
   std::optional<std::uint64_t> seed;
   std::vector<std::string> package_paths;
+  std::optional<double> max_surface_voxels;  // > 0; the memory guard, see CollisionModelOptions
 };
 
 // The resolution used when a scene says `auto` (or a .cfg says nothing): fixed-base arms 1 cm;
@@ -37,10 +41,50 @@ struct SceneOverrides {
 double autoResolution(const RobotModel& robot, const Eigen::AlignedBox3d& scene_box,
                       double robot_diagonal);
 
+// A model built on first use, once, whichever thread asks first (the reference checkers cost
+// time and memory that a scene planned with the octree checker should not pay). Reads like the
+// shared_ptr it holds: `lazy->f()`, `*lazy`, and converts to std::shared_ptr<const Model>.
+template <class Model>
+class LazyModel {
+ public:
+  LazyModel() = default;
+  explicit LazyModel(std::function<std::shared_ptr<const Model>()> build)
+      : state_(std::make_shared<State>()) {
+    state_->build = std::move(build);
+  }
+  // Builds the model the first time (a build that throws is retried by the next call).
+  const std::shared_ptr<const Model>& get() const {
+    if (!state_) throw Error("LazyModel: no model to build");
+    std::call_once(state_->once, [this] { state_->model = state_->build(); });
+    return state_->model;
+  }
+  bool built() const { return state_ && state_->model; }
+  const Model* operator->() const { return get().get(); }
+  const Model& operator*() const { return *get(); }
+  operator std::shared_ptr<const Model>() const { return get(); }  // NOLINT: reads as a pointer
+
+ private:
+  struct State {
+    std::once_flag once;
+    std::function<std::shared_ptr<const Model>()> build;
+    std::shared_ptr<const Model> model;
+  };
+  std::shared_ptr<State> state_;
+};
+
 struct PlanningScene {
   SceneSpec spec;  // with the overrides applied
   std::shared_ptr<const OctreeCollisionModel> model;
-  std::shared_ptr<const FclCollisionModel> fcl_model;  // the exact reference, same scene
+  // The references on the same robot and environment, built on first use (already built when
+  // the scene's checker is one of them): exact FCL, and FCL on an OctoMap of the environment at
+  // the scene's resolution.
+  LazyModel<FclCollisionModel> fcl_model;
+  LazyModel<FclOctomapCollisionModel> fcl_octomap_model;
+  std::shared_ptr<const FclCollisionModel> fclModel() const { return fcl_model.get(); }
+  std::shared_ptr<const FclOctomapCollisionModel> fclOctomapModel() const {
+    return fcl_octomap_model.get();
+  }
+  std::shared_ptr<const EnvironmentGeometry> environment;  // the loaded objects
   ompl::geometric::SimpleSetupPtr setup;  // checker installed, start/goal set if the scene has them
   std::string checker;                    // the checker in use
 };

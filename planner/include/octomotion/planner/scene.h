@@ -45,6 +45,8 @@ struct OctreeSettings {
   std::optional<double> link_resolution;  // coarser per-link source trees; empty = resolution
   Rounding rounding = Rounding::kConservative;
   std::string checker = "octree-fused";  // one of kCheckerNames
+  // Memory guard (CollisionModelOptions::max_surface_voxels); empty = the library default.
+  std::optional<double> max_surface_voxels;
 };
 
 // A start or goal: a joint vector (arms) or a pose (rigid bodies).

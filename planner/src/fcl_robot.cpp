@@ -1,0 +1,146 @@
+#include "fcl_robot.h"
+
+#include <algorithm>
+#include <array>
+#include <limits>
+#include <map>
+#include <string>
+
+#include <fcl/geometry/bvh/BVH_model.h>
+#include <fcl/geometry/shape/box.h>
+#include <fcl/geometry/shape/cylinder.h>
+#include <fcl/geometry/shape/sphere.h>
+#include <fcl/math/bv/OBBRSS.h>
+#include <fcl/narrowphase/collision.h>
+#include <fcl/narrowphase/distance.h>
+
+namespace octomotion::fcl_internal {
+
+Geom shapeOf(const Primitive& p) {
+  Geom g;
+  if (const auto* b = std::get_if<Box>(&p)) {
+    const Eigen::Vector3d size = 2 * b->half_extents;
+    g = std::make_shared<fcl::Boxd>(size.x(), size.y(), size.z());
+  } else if (const auto* s = std::get_if<Sphere>(&p)) {
+    g = std::make_shared<fcl::Sphered>(s->radius);
+  } else {
+    const auto& c = std::get<Cylinder>(p);
+    g = std::make_shared<fcl::Cylinderd>(c.radius, c.length);
+  }
+  g->computeLocalAABB();
+  return g;
+}
+
+Geom meshOf(const TriangleMesh& mesh) {
+  auto model = std::make_shared<fcl::BVHModel<fcl::OBBRSSd>>();
+  std::vector<fcl::Triangle> triangles;
+  triangles.reserve(mesh.triangles.size());
+  for (const auto& t : mesh.triangles) triangles.emplace_back(t[0], t[1], t[2]);
+  model->beginModel(static_cast<int>(triangles.size()), static_cast<int>(mesh.vertices.size()));
+  model->addSubModel(mesh.vertices, triangles);
+  model->endModel();
+  model->computeLocalAABB();
+  return model;
+}
+
+void setTightAabb(fcl::CollisionObjectd& object) {
+  const fcl::Transform3d& X = object.getTransform();
+  const fcl::AABBd& local = object.collisionGeometry()->aabb_local;
+  const Eigen::Vector3d center = X * (0.5 * (local.min_ + local.max_));
+  const Eigen::Vector3d half = X.linear().cwiseAbs() * (0.5 * (local.max_ - local.min_));
+  // The AABB is a cache FCL declares mutable; CollisionObject has no setter for it.
+  fcl::AABBd& aabb = const_cast<fcl::AABBd&>(object.getAABB());
+  aabb.min_ = center - half;
+  aabb.max_ = center + half;
+}
+
+bool collidePair(const fcl::CollisionObjectd& a, const fcl::CollisionObjectd& b,
+                 const fcl::CollisionRequestd& request, fcl::CollisionResultd& result) {
+  if (!a.getAABB().overlap(b.getAABB())) return false;
+  result.clear();
+  return fcl::collide(&a, &b, request, result) > 0;
+}
+
+RobotGeometry::RobotGeometry(const RobotModel& robot, bool keep_mesh_root_transform,
+                             bool center_mesh_vertices) {
+  std::map<std::pair<std::string, std::array<double, 3>>, Geom> meshes;
+  std::vector<std::vector<int>> link_elements(static_cast<std::size_t>(robot.linkCount()));
+  for (int l = 0; l < robot.linkCount(); ++l) {
+    for (const CollisionElement& e : robot.link(l).collision) {
+      Geom g;
+      if (const auto* p = std::get_if<Primitive>(&e.geometry)) {
+        g = shapeOf(*p);
+      } else {
+        const auto& ref = std::get<MeshRef>(e.geometry);
+        const auto key = std::make_pair(
+            ref.path, std::array<double, 3>{ref.scale.x(), ref.scale.y(), ref.scale.z()});
+        auto it = meshes.find(key);
+        if (it == meshes.end()) {
+          MeshLoadOptions options;
+          options.keep_root_transform = keep_mesh_root_transform;
+          options.scale = ref.scale;
+          TriangleMesh mesh = loadMesh(ref.path, options);
+          if (center_mesh_vertices) centerOnVertexMean(mesh);
+          it = meshes.emplace(key, meshOf(mesh)).first;
+        }
+        g = it->second;
+      }
+      link_elements[static_cast<std::size_t>(l)].push_back(static_cast<int>(elements_.size()));
+      elements_.push_back({l, e.X_LE});
+      prototypes_.emplace_back(g);
+    }
+  }
+  for (const auto& [a, b] : robot.checkedPairs()) {
+    for (int ea : link_elements[static_cast<std::size_t>(a)]) {
+      for (int eb : link_elements[static_cast<std::size_t>(b)]) element_pairs_.emplace_back(ea, eb);
+    }
+  }
+}
+
+void RobotGeometry::initScratch(const RobotModel& robot, RobotScratch& s) const {
+  s.robot = robot.makeData();
+  s.objects = prototypes_;
+  s.request = fcl::CollisionRequestd();
+  s.request.num_max_contacts = 1;
+  s.request.enable_contact = false;
+  s.result.clear();
+}
+
+void RobotGeometry::pose(const RobotModel& robot, const double* q, std::size_t q_size,
+                         const Eigen::Isometry3d& X_WB, RobotScratch& s) const {
+  robot.forwardKinematics(q, q_size, s.robot, X_WB);
+  for (std::size_t i = 0; i < elements_.size(); ++i) {
+    const Element& e = elements_[i];
+    const Eigen::Isometry3d X_WE = s.robot.linkPose(e.link) * e.X_LE;
+    s.objects[i].setTransform(X_WE.rotation(), X_WE.translation());
+    setTightAabb(s.objects[i]);
+  }
+}
+
+bool RobotGeometry::selfInCollision(RobotScratch& s) const {
+  for (const auto& [a, b] : element_pairs_) {
+    if (collidePair(s.objects[static_cast<std::size_t>(a)], s.objects[static_cast<std::size_t>(b)],
+                    s.request, s.result)) {
+      return true;
+    }
+  }
+  return false;
+}
+
+double RobotGeometry::selfDistance(RobotScratch& s, double cap) const {
+  double best = element_pairs_.empty() ? std::numeric_limits<double>::infinity() : cap;
+  fcl::DistanceRequestd request;
+  fcl::DistanceResultd result;
+  for (const auto& [a, b] : element_pairs_) {
+    const fcl::CollisionObjectd& oa = s.objects[static_cast<std::size_t>(a)];
+    const fcl::CollisionObjectd& ob = s.objects[static_cast<std::size_t>(b)];
+    if (oa.getAABB().distance(ob.getAABB()) >= best) continue;
+    result.clear();
+    fcl::distance(&oa, &ob, request, result);
+    best = std::min(best, std::max(0.0, result.min_distance));
+    if (best <= 0) return 0;
+  }
+  return best;
+}
+
+}  // namespace octomotion::fcl_internal
