@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 #include "octomotion/error.h"
@@ -89,7 +90,10 @@ std::string lineRef(int line) {
 }
 
 void addPoint(PointCloud* cloud, double x, double y, double z) {
-  if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z)) {
+  // Beyond float's range a coordinate would become infinite (and the conversion is undefined
+  // behaviour): such points are skipped like the non-finite ones. !(<=) also catches NaN.
+  constexpr double kFloatMax = std::numeric_limits<float>::max();
+  if (!(std::abs(x) <= kFloatMax) || !(std::abs(y) <= kFloatMax) || !(std::abs(z) <= kFloatMax)) {
     ++cloud->skipped_non_finite;
     return;
   }

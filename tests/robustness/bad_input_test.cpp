@@ -105,6 +105,16 @@ TEST(BadInput, PointCloudsAndTrees) {
   }
 }
 
+// Found by fuzz/pointcloud_fuzz: a finite double beyond float's range became an infinite float
+// point (through a conversion that is undefined behaviour). Such points are now skipped and
+// counted, like NaN/inf ones.
+TEST(BadInput, PointCoordinatesBeyondFloatRangeAreSkipped) {
+  const pointcloud::PointCloud points = pointcloud::loadPointCloud(bad("huge_coordinate.xyz"));
+  ASSERT_EQ(points.points.size(), 1u);
+  EXPECT_TRUE(points.points[0].allFinite());
+  EXPECT_EQ(points.skipped_non_finite, 2u);
+}
+
 TEST(BadInput, TreesTooLargeForTheMemoryLimitFailEarly) {
   RobotModelOptions robot_options;
   robot_options.package_paths = {OCTOMOTION_SOURCE_DIR};

@@ -6,7 +6,8 @@
 // encoding (PCD binary_compressed, PLY big endian), x/y/z of a type other than float/double,
 // truncated data, unparsable numbers — throws FileError naming the file and the problem.
 // Points with a NaN or infinite coordinate are NOT an error (PCL writes NaN for invalid points
-// of organised clouds): they are skipped and counted in PointCloud::skipped_non_finite.
+// of organised clouds): they are skipped and counted in PointCloud::skipped_non_finite, as are
+// points with a coordinate beyond float's range (they would be infinite as floats).
 #pragma once
 
 #include <cstddef>
