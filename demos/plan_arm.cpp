@@ -1,7 +1,8 @@
 // The main demo: the 7-DoF octo7 arm reaches into the middle compartment of a bookshelf.
 // Prints what was modelled, plans with RRTConnect on the fused octree checker, re-checks the
 // path with FCL (exact meshes), compares the per-check cost of the octree and FCL checkers on
-// the same random states, and writes the path in OMPL's format to out/plan_arm.path.
+// the same random states, writes the path in OMPL's format to out/plan_arm.path and a viewer
+// file (glTF binary: the voxel trees, the robot and the path) to out/plan_arm.glb.
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
@@ -10,6 +11,7 @@
 
 #include <ompl/util/Console.h>
 
+#include "octomotion/planner/gltf_export.h"
 #include "octomotion/planner/octree_validity_checker.h"
 #include "octomotion/planner/planning_scene.h"
 
@@ -92,6 +94,27 @@ int main(int argc, char** argv) {
     std::cout << "== path written to out/plan_arm.path (one state per line, joints in order:";
     for (const Variable& v : robot.variables()) std::cout << ' ' << v.name;
     std::cout << ")\n";
+
+    // The same path for the web viewer (docs/viewer.md): the trees, the robot and the path as
+    // an animation, the links' voxel trees at the middle state.
+    std::vector<RobotState> path_states(result.path->getStateCount());
+    for (unsigned i = 0; i < result.path->getStateCount(); ++i) {
+      path_states[i].q.resize(static_cast<std::size_t>(robot.variableCount()));
+      stateToConfiguration(robot, result.path->getState(i), path_states[i].q, path_states[i].X_WB);
+      if (robot.isFreeFlying()) path_states[i].q.clear();
+    }
+    GltfExportOptions view;
+    view.state_index = path_states.size() / 2;
+    view.keep_mesh_root_transform = scene.spec.robot.keep_mesh_root_transform;
+    view.center_mesh_vertices = scene.spec.robot.center_mesh_vertices;
+    const GltfExportReport exported =
+        exportGlb(*scene.model, path_states, view, "out/plan_arm.glb");
+    std::cout << "== viewer file written to out/plan_arm.glb (" << exported.trees.size()
+              << " voxel trees, " << exported.link_meshes << " link meshes, "
+              << exported.path_states << " path states); to view it (after npm ci --prefix "
+              << "viewer):\n   python3 -m http.server 8000 -d .\n   then open "
+              << "http://localhost:8000/viewer/?model=../out/plan_arm.glb&state="
+              << view.state_index << "\n";
     return colliding == 0 ? 0 : 1;
   } catch (const std::exception& e) {
     std::cerr << "plan_arm: error: " << e.what() << "\n";

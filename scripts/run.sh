@@ -18,7 +18,12 @@ build=${OCTOMOTION_BUILD_DIR:-$root/build}
 packages=(build-essential cmake ninja-build pkg-config clang-format
   libeigen3-dev libompl-dev libfcl-dev liburdfdom-dev libtinyxml-dev libassimp-dev liboctomap-dev
   libboost-serialization-dev libboost-filesystem-dev libboost-system-dev
-  libyaml-cpp-dev libnanoflann-dev libgtest-dev libgmock-dev libbenchmark-dev)
+  libyaml-cpp-dev libnanoflann-dev libgtest-dev libgmock-dev libbenchmark-dev gnuplot-nox)
+# The test suite also drives the web viewer (viewer/) in headless Chromium through Node.js.
+if [[ $mode == test ]]; then
+  packages+=(chromium)
+  command -v npm >/dev/null || packages+=(nodejs npm)
+fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "ok installed" || missing+=("$p")
@@ -30,6 +35,11 @@ if ((${#missing[@]})); then
   "${sudo_cmd[@]}" apt-get update -qq
   DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends \
     "${missing[@]}"
+fi
+
+# The viewer's three.js and playwright-core, pinned by viewer/package-lock.json.
+if [[ $mode == test && ! -d $root/viewer/node_modules ]]; then
+  npm ci --prefix "$root/viewer" --no-audit --no-fund
 fi
 
 # shellcheck disable=SC2086
