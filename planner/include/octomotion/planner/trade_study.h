@@ -1,0 +1,126 @@
+// The speed/accuracy trade study (issue #5): for one scene, every octree setting (resolution x
+// rounding x checker path) and the FCL references are run on the same uniformly sampled states
+// in the same process, so their times are comparable and their answers can be scored against
+// FCL's exact one. Planning is measured with ompl::tools::Benchmark, whose .log files
+// ompl_benchmark_statistics.py and Planner Arena read.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <iosfwd>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "octomotion/planner/collision_model.h"
+#include "octomotion/planner/planning_scene.h"
+
+namespace octomotion {
+
+// A planner and the time limit of each of its runs.
+struct StudyPlanner {
+  std::string name;   // an OMPL planner known to makePlanner
+  double time = 0.0;  // seconds per run; 0: the scene's problem.time
+};
+
+struct TradeStudyOptions {
+  std::string scene_path;
+  SceneOverrides overrides;         // package paths (resolution/checker overrides are ignored)
+  std::vector<double> resolutions;  // metres; empty: defaultResolutions()
+  std::vector<Rounding> roundings = {Rounding::kConservative, Rounding::kCenter};
+  std::vector<CheckerPath> paths = {CheckerPath::kMoveTree, CheckerPath::kFused};
+  bool fcl_octomap = true;  // also FCL+OctoMap at every resolution (when it is built in)
+  std::size_t states = 20000;
+  // The moveTree path is orders of magnitude slower at fine resolutions; it checks only the
+  // first `move_tree_states` of the same states (0: all of them).
+  std::size_t move_tree_states = 0;
+  std::uint64_t seed = 1;
+  // Planning (skipped when `runs` is 0 or the scene has no start and goal).
+  std::vector<StudyPlanner> planners = {{"RRTConnect", 0.0}, {"RRTstar", 0.0}};
+  unsigned runs = 20;
+  // Which settings plan: false plans the fused conservative octree at every resolution, the
+  // other octree settings at the resolution closest to the scene's, FCL, and FCL+OctoMap at
+  // that resolution; true plans every setting.
+  bool plan_every_setting = false;
+  std::string log_dir;  // where the Benchmark .log files go; empty: none written
+  std::function<void(const std::string&)> progress;  // one line per step; may be empty
+};
+
+// The resolutions from coarse to fine: 8, 4, 2, 1, 0.5 cm for fixed-base robots; for free-flying
+// bodies 16, 8, 4, 2 and 1 times the scene's own resolution (its `octree.resolution`, or the
+// automatic one, which is scaled to the scene and the body).
+std::vector<double> defaultResolutions(bool free_flying, double scene_resolution);
+
+// One checker setting over the state set. Times include forward kinematics; "free" and
+// "colliding" classify the states by FCL's exact answer.
+struct CheckRow {
+  std::string scene;
+  std::string checker;    // octree | octree-fused | fcl | fcl-octomap
+  double resolution = 0;  // metres; 0 for fcl
+  std::string rounding;   // conservative | center; empty for fcl and fcl-octomap
+  std::size_t states = 0, free_states = 0, colliding_states = 0;
+  double mean_us = 0;  // full check (environment and self-collision)
+  double median_free_us = 0, p90_free_us = 0;
+  double median_colliding_us = 0, p90_colliding_us = 0;
+  double env_mean_us = -1;          // environment only; -1 when the checker cannot split it
+  std::size_t false_positives = 0;  // says collision, FCL says free
+  std::size_t false_negatives = 0;  // says free, FCL says collision
+  double fp_rate = 0;               // false_positives / free_states
+  double fn_rate = 0;               // false_negatives / colliding_states
+  // The environment-only answers against FCL's environment-only answers (the split of the
+  // errors between the environment and self-collision); -1 when not measured.
+  double env_fp_rate = -1, env_fn_rate = -1;
+  std::size_t memory_bytes = 0;  // octree: environment + link source trees; 0 if unknown
+  double build_seconds = 0;
+  double speedup_vs_fcl = 1;               // FCL's mean full-check time / this one's
+  double env_speedup_vs_fcl_octomap = -1;  // FCL+OctoMap's environment-only mean at the same
+                                           // resolution / this one's; -1 when not measured
+};
+
+struct PlanRow {
+  std::string scene, planner, checker;
+  double resolution = 0;
+  std::string rounding;
+  double time_limit = 0;
+  unsigned runs = 0, solved = 0;      // exact solutions
+  double median_time = 0;             // seconds, over every run (unsolved ones count the limit)
+  double median_first_solution = -1;  // seconds, solved runs, from Benchmark's progress data
+  double median_length = -1;          // simplified path length, solved runs; -1 if none
+  std::string log_file;
+};
+
+struct TradeStudyResult {
+  std::string scene;
+  bool free_flying = false;
+  double scene_resolution = 0;
+  std::vector<CheckRow> checks;
+  std::vector<PlanRow> planning;
+};
+
+// Runs the study. Throws octomotion::Error for a bad scene or option.
+TradeStudyResult runTradeStudy(const TradeStudyOptions& options);
+
+// Scoring against the reference, exposed for tests: counts disagreements of `answers` with the
+// exact `reference` (true = in collision) and sets the rows' counts and rates.
+void scoreAgainstReference(const std::vector<bool>& answers, const std::vector<bool>& reference,
+                           CheckRow& row);
+// Median and the 90th percentile (nearest rank) of `values` (which is reordered); 0 when empty.
+double percentile(std::vector<double>& values, double p);
+
+// Writers. The CSVs have a header line; writeCheckCsv's columns are kCheckCsvColumns.
+extern const char* const kCheckCsvColumns;
+extern const char* const kPlanCsvColumns;
+void writeCheckCsv(const std::vector<CheckRow>& rows, std::ostream& out, bool header = true);
+void writePlanCsv(const std::vector<PlanRow>& rows, std::ostream& out, bool header = true);
+void writeMarkdown(const TradeStudyResult& result, std::ostream& out);
+// gnuplot data: one block per checker curve (index i), first line the curve's title.
+// Trade-off: false-positive rate (%) vs mean check time (us). Planning: resolution (cm) vs
+// median planning time (s), one block per planner x checker.
+void writeTradeoffPlotData(const TradeStudyResult& result, std::ostream& out);
+void writePlanningPlotData(const TradeStudyResult& result, std::ostream& out);
+
+// The targets of issue #5 evaluated on one scene's rows: one markdown bullet per target with the
+// measured ratio and margin.
+void writeTargets(const TradeStudyResult& result, std::ostream& out);
+
+}  // namespace octomotion

@@ -1,0 +1,147 @@
+// The trade study's bookkeeping (issue #5): false-positive/false-negative counting against the
+// exact reference on hand-made answers, percentiles, the CSV layout, and a tiny study of a real
+// scene whose conservative rows must never miss a contact FCL finds.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "octomotion/error.h"
+#include "octomotion/planner/trade_study.h"
+
+namespace octomotion {
+namespace {
+
+std::size_t fieldCount(const std::string& line) {
+  return static_cast<std::size_t>(std::count(line.begin(), line.end(), ',')) + 1;
+}
+
+TEST(TradeStudyTest, ScoresFalsePositivesAndNegativesAgainstTheReference) {
+  // reference: 3 colliding, 5 free
+  const std::vector<bool> reference = {true, true, true, false, false, false, false, false};
+  const std::vector<bool> answers = {true, false, true, true, true, false, false, true};
+  CheckRow row;
+  scoreAgainstReference(answers, reference, row);
+  EXPECT_EQ(row.states, 8u);
+  EXPECT_EQ(row.colliding_states, 3u);
+  EXPECT_EQ(row.free_states, 5u);
+  EXPECT_EQ(row.false_negatives, 1u);  // state 1
+  EXPECT_EQ(row.false_positives, 3u);  // states 3, 4, 7
+  EXPECT_DOUBLE_EQ(row.fn_rate, 1.0 / 3.0);
+  EXPECT_DOUBLE_EQ(row.fp_rate, 3.0 / 5.0);
+
+  // The reference scored against itself is perfect; all-free has no colliding states to miss.
+  scoreAgainstReference(reference, reference, row);
+  EXPECT_EQ(row.false_positives + row.false_negatives, 0u);
+  const std::vector<bool> none(4, false);
+  scoreAgainstReference(none, none, row);
+  EXPECT_EQ(row.colliding_states, 0u);
+  EXPECT_DOUBLE_EQ(row.fn_rate, 0.0);
+
+  EXPECT_THROW(scoreAgainstReference(none, reference, row), InvalidArgument);
+}
+
+TEST(TradeStudyTest, PercentileIsNearestRank) {
+  std::vector<double> v = {5, 1, 4, 2, 3, 10, 9, 8, 7, 6};
+  EXPECT_DOUBLE_EQ(percentile(v, 0.5), 5);
+  EXPECT_DOUBLE_EQ(percentile(v, 0.9), 9);
+  EXPECT_DOUBLE_EQ(percentile(v, 1.0), 10);
+  std::vector<double> one = {3};
+  EXPECT_DOUBLE_EQ(percentile(one, 0.9), 3);
+  std::vector<double> empty;
+  EXPECT_DOUBLE_EQ(percentile(empty, 0.5), 0);
+}
+
+TEST(TradeStudyTest, CsvRowsHaveTheHeadersColumns) {
+  CheckRow check;
+  check.scene = "s";
+  check.checker = "octree-fused";
+  check.resolution = 0.01;
+  check.rounding = "conservative";
+  std::ostringstream out;
+  writeCheckCsv({check, check}, out);
+  std::istringstream in(out.str());
+  std::string header, line;
+  std::getline(in, header);
+  EXPECT_EQ(header, kCheckCsvColumns);
+  int rows = 0;
+  while (std::getline(in, line)) {
+    EXPECT_EQ(fieldCount(line), fieldCount(header)) << line;
+    ++rows;
+  }
+  EXPECT_EQ(rows, 2);
+
+  PlanRow plan;
+  plan.scene = "s";
+  plan.planner = "RRTConnect";
+  plan.checker = "fcl";
+  std::ostringstream pout;
+  writePlanCsv({plan}, pout);
+  std::istringstream pin(pout.str());
+  std::getline(pin, header);
+  EXPECT_EQ(header, kPlanCsvColumns);
+  std::getline(pin, line);
+  EXPECT_EQ(fieldCount(line), fieldCount(header));
+}
+
+TEST(TradeStudyTest, DefaultResolutionsGoFromCoarseToFine) {
+  const std::vector<double> arm = defaultResolutions(false, 1.0);
+  ASSERT_GE(arm.size(), 5u);
+  EXPECT_DOUBLE_EQ(arm.front(), 0.08);
+  EXPECT_DOUBLE_EQ(arm.back(), 0.005);
+  const std::vector<double> body = defaultResolutions(true, 0.005);
+  ASSERT_GE(body.size(), 5u);
+  EXPECT_DOUBLE_EQ(body.front(), 0.08);
+  EXPECT_DOUBLE_EQ(body.back(), 0.005);
+  EXPECT_TRUE(std::is_sorted(body.rbegin(), body.rend()));
+}
+
+// A small real study: the conservative octree and FCL+OctoMap (conservative voxels too) never
+// say free where FCL finds a contact; FCL against itself is exact.
+TEST(TradeStudyTest, ConservativeSettingsHaveNoFalseNegatives) {
+  TradeStudyOptions options;
+  options.scene_path = std::string(OCTOMOTION_SOURCE_DIR) + "/robots/scenes/narrow_passage.yaml";
+  options.states = 300;
+  options.resolutions = {0.05, 0.02};
+  options.runs = 0;
+  const TradeStudyResult result = runTradeStudy(options);
+  EXPECT_TRUE(result.free_flying);
+  EXPECT_TRUE(result.planning.empty());
+  // fcl + per resolution: fcl-octomap + 2 roundings x 2 paths.
+  ASSERT_EQ(result.checks.size(), 1u + 2u * 5u);
+  const CheckRow& fcl = result.checks.front();
+  EXPECT_EQ(fcl.checker, "fcl");
+  EXPECT_EQ(fcl.false_positives + fcl.false_negatives, 0u);
+  EXPECT_GT(fcl.colliding_states, 0u);
+  EXPECT_GT(fcl.free_states, 0u);
+  for (const CheckRow& r : result.checks) {
+    EXPECT_EQ(r.states, 300u);
+    EXPECT_EQ(r.free_states + r.colliding_states, r.states);
+    if (r.rounding == "conservative" || r.checker == "fcl-octomap") {
+      EXPECT_EQ(r.false_negatives, 0u) << r.checker << " " << r.resolution;
+    }
+    if (r.checker.rfind("octree", 0) == 0) {
+      EXPECT_GT(r.memory_bytes, 0u);
+    }
+  }
+  // Both paths answer identically for the same model.
+  for (const CheckRow& a : result.checks) {
+    for (const CheckRow& b : result.checks) {
+      if (a.checker == "octree" && b.checker == "octree-fused" && a.resolution == b.resolution &&
+          a.rounding == b.rounding) {
+        EXPECT_EQ(a.false_positives, b.false_positives);
+        EXPECT_EQ(a.false_negatives, b.false_negatives);
+      }
+    }
+  }
+  std::ostringstream md;
+  writeMarkdown(result, md);
+  writeTargets(result, md);
+  EXPECT_NE(md.str().find("| fcl | exact |"), std::string::npos);
+  EXPECT_NE(md.str().find("Targets for narrow_passage"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace octomotion
