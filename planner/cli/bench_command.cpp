@@ -33,6 +33,7 @@ bench options:
   --plan-every-setting     plan with every setting (default: the fused conservative octree at
                            every resolution, the others at the scene's resolution, FCL)
   --no-fcl-octomap         leave out FCL+OctoMap
+  --link-ratio R           octree link trees at R x each resolution (default 1; e.g. 0.25)
   --out-dir DIR            where the CSV, markdown, plot data and logs go (default .)
   --seed N                 seeds the states and OMPL (default 1)
   --time S                 default planning time limit (default: the scene's)
@@ -92,6 +93,10 @@ int benchCommand(const std::vector<std::string>& args) {
         if (!(v > 0)) throw InvalidArgument("--resolutions: " + r + " must be > 0");
         options.resolutions.push_back(v);
       }
+    } else if (arg == "--link-ratio") {
+      const double r = parseNumber(arg, value());
+      if (!(r > 0 && r <= 1)) throw InvalidArgument("--link-ratio: must be in (0, 1]");
+      options.link_resolution_ratio = r;
     } else if (arg == "--roundings") {
       options.roundings.clear();
       for (const std::string& r : splitList(arg, value())) {

@@ -457,6 +457,7 @@ TradeStudyResult runTradeStudy(const TradeStudyOptions& options) {
   result.scene = spec.name;
   result.free_flying = free_flying;
   result.scene_resolution = scene.resolution;
+  result.link_resolution_ratio = options.link_resolution_ratio;
   std::vector<double> resolutions = options.resolutions.empty()
                                         ? defaultResolutions(free_flying, scene.resolution)
                                         : options.resolutions;
@@ -539,6 +540,9 @@ TradeStudyResult runTradeStudy(const TradeStudyOptions& options) {
     for (Rounding rounding : options.roundings) {
       CollisionModelOptions mo;
       mo.resolution = resolution;
+      if (options.link_resolution_ratio != 1.0) {
+        mo.link_resolution = resolution * options.link_resolution_ratio;
+      }
       mo.rounding = rounding;
       mo.base_position_bounds = scene.bounds;
       mo.keep_mesh_root_transform = spec.robot.keep_mesh_root_transform;
@@ -681,7 +685,12 @@ void writeMarkdown(const TradeStudyResult& result, std::ostream& out) {
   const CheckRow& fcl = result.checks.front();
   out << fcl.states << " uniform states (" << fcl.colliding_states << " colliding per FCL, "
       << fcl.free_states << " free); times in microseconds per check, forward kinematics "
-      << "included; FP % of free states, FN % of colliding states.\n\n";
+      << "included; FP % of free states, FN % of colliding states.";
+  if (result.link_resolution_ratio != 1.0) {
+    out << " Octree link source trees at " << result.link_resolution_ratio
+        << " x the environment resolution.";
+  }
+  out << "\n\n";
   out << "| checker | resolution | rounding | mean | free median | free p90 | colliding median "
          "| colliding p90 | env-only mean | FP % | FN % | env FP % | env FN % | memory KiB | build "
          "s | FCL / this |\n"
