@@ -38,8 +38,9 @@ namespace {
 // voxels rarely lets a contact slip between checks (validation_planned_paths_test re-checks).
 constexpr double kMaxStepVoxels = 2.0;
 
-// The box of every link's collision geometry at the zero configuration, in the root frame.
-Eigen::AlignedBox3d geometryBox(const RobotModel& robot) {
+}  // namespace
+
+Eigen::AlignedBox3d robotGeometryBox(const RobotModel& robot) {
   RobotData data = robot.makeData();
   const std::vector<double> q(static_cast<std::size_t>(robot.variableCount()), 0.0);
   robot.forwardKinematics(q.data(), q.size(), data);
@@ -60,8 +61,6 @@ Eigen::AlignedBox3d geometryBox(const RobotModel& robot) {
   }
   return box;
 }
-
-}  // namespace
 
 double autoResolution(const RobotModel& robot, const Eigen::AlignedBox3d& scene_box,
                       double robot_diagonal) {
@@ -127,7 +126,7 @@ PlanningScene loadPlanningScene(const std::string& scene_path, const SceneOverri
       // A URDF without movable joints is a rigid body: it flies free in SE(3).
       options.base = BaseMotion::kFreeFlying;
       robot = RobotModel::fromUrdfFile(spec.robot.urdf, options);
-      robot_diagonal = geometryBox(*robot).diagonal().norm();
+      robot_diagonal = robotGeometryBox(*robot).diagonal().norm();
     }
     if (!spec.robot.srdf.empty()) robot->loadSrdfFile(spec.robot.srdf);
   } else {

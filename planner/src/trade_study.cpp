@@ -49,29 +49,6 @@ struct StudyScene {
   double resolution = 0;                      // the scene's own (or auto) resolution
 };
 
-// The box of every link's collision geometry at the zero configuration (root frame).
-Eigen::AlignedBox3d geometryBox(const RobotModel& robot) {
-  RobotData data = robot.makeData();
-  const std::vector<double> q(static_cast<std::size_t>(robot.variableCount()), 0.0);
-  robot.forwardKinematics(q.data(), q.size(), data);
-  Eigen::AlignedBox3d box;
-  for (int l = 0; l < robot.linkCount(); ++l) {
-    for (const CollisionElement& e : robot.link(l).collision) {
-      const Eigen::Isometry3d X = data.linkPose(l) * e.X_LE;
-      if (const auto* p = std::get_if<Primitive>(&e.geometry)) {
-        box.extend(boundingBox(*p, X));
-      } else {
-        const auto& ref = std::get<MeshRef>(e.geometry);
-        MeshLoadOptions options;
-        options.keep_root_transform = false;
-        options.scale = ref.scale;
-        for (const Eigen::Vector3d& v : loadMesh(ref.path, options).vertices) box.extend(X * v);
-      }
-    }
-  }
-  return box;
-}
-
 StudyScene loadStudyScene(const TradeStudyOptions& options, const WarningSink& warnings) {
   StudyScene s;
   s.spec = loadScene(options.scene_path);
@@ -88,7 +65,7 @@ StudyScene loadStudyScene(const TradeStudyOptions& options, const WarningSink& w
       s.robot = RobotModel::fromUrdfFile(spec.robot.urdf, ro);
     }
     if (!spec.robot.srdf.empty()) s.robot->loadSrdfFile(spec.robot.srdf);
-    s.robot_diagonal = geometryBox(*s.robot).diagonal().norm();
+    s.robot_diagonal = robotGeometryBox(*s.robot).diagonal().norm();
   } else {
     s.robot = RobotModel::fromMesh(spec.robot.mesh);
     MeshLoadOptions mo;

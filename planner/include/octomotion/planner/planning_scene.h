@@ -72,6 +72,10 @@ class LazyModel {
   std::shared_ptr<State> state_;
 };
 
+// The box of every link's collision geometry at the zero configuration, in the root frame (reads
+// the mesh files). Free-flying bodies use its diagonal for autoResolution and the SE(3) bounds.
+Eigen::AlignedBox3d robotGeometryBox(const RobotModel& robot);
+
 struct PlanningScene {
   SceneSpec spec;  // with the overrides applied
   std::shared_ptr<const OctreeCollisionModel> model;
