@@ -6,7 +6,7 @@
 // 20,000 points in an XYZ file) + 4 boxes; "boxes" = 24 random boxes (large black leaves).
 // Counter "gap_mm": mean of (tree bound - point bound), the extra looseness of the point method.
 //
-//   build-h7/bench/planner_clearance_bench --benchmark_repetitions=5
+//   build/bench/planner_clearance_bench --benchmark_repetitions=5
 //       --benchmark_report_aggregates_only=true  (one command line)
 #include <benchmark/benchmark.h>
 
@@ -19,27 +19,13 @@
 #include <vector>
 
 #include "octomotion/planner/collision_model.h"
+#include "snake_robot.h"
 
 namespace {
 
 using namespace octomotion;
 
-std::string snakeUrdf(int links, double limit) {
-  std::ostringstream u;
-  u << "<robot name=\"snake\">\n";
-  for (int i = 0; i < links; ++i) {
-    u << "<link name=\"l" << i << "\"><collision><origin xyz=\"0.05 0 0\"/><geometry>"
-      << "<box size=\"0.08 0.04 0.04\"/></geometry></collision></link>\n";
-  }
-  for (int i = 1; i < links; ++i) {
-    u << "<joint name=\"j" << i << "\" type=\"revolute\"><parent link=\"l" << i - 1
-      << "\"/><child link=\"l" << i << "\"/><origin xyz=\"0.1 0 0\"/><axis xyz=\""
-      << (i % 2 ? "0 0 1" : "0 1 0") << "\"/><limit lower=\"" << -limit << "\" upper=\"" << limit
-      << "\" effort=\"1\" velocity=\"1\"/></joint>\n";
-  }
-  u << "</robot>\n";
-  return u.str();
-}
+using test::snakeUrdf;
 
 std::vector<EnvironmentObject> scene(bool cloud) {
   std::mt19937_64 rng(42);

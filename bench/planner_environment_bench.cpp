@@ -10,7 +10,7 @@
 //               found with the N-objects octree (method 2) or a plain loop over the boxes (3).
 // All stop at the first contact and give the same answers (counted in "hit").
 //
-//   build-h7/bench/planner_environment_bench --benchmark_repetitions=5
+//   build/bench/planner_environment_bench --benchmark_repetitions=5
 //       --benchmark_report_aggregates_only=true  (one command line)
 #include <benchmark/benchmark.h>
 
@@ -26,6 +26,7 @@
 #include "octomotion/octree/voxelize.h"
 #include "octomotion/planner/environment.h"
 #include "octomotion/planner/robot_model.h"
+#include "snake_robot.h"
 
 namespace {
 
@@ -35,22 +36,7 @@ using broadphase::NObjectsOctree;
 
 constexpr double kRes = 0.01;
 
-std::string snakeUrdf(int links, double limit) {
-  std::ostringstream u;
-  u << "<robot name=\"snake\">\n";
-  for (int i = 0; i < links; ++i) {
-    u << "<link name=\"l" << i << "\"><collision><origin xyz=\"0.05 0 0\"/><geometry>"
-      << "<box size=\"0.08 0.04 0.04\"/></geometry></collision></link>\n";
-  }
-  for (int i = 1; i < links; ++i) {
-    u << "<joint name=\"j" << i << "\" type=\"revolute\"><parent link=\"l" << i - 1
-      << "\"/><child link=\"l" << i << "\"/><origin xyz=\"0.1 0 0\"/><axis xyz=\""
-      << (i % 2 ? "0 0 1" : "0 1 0") << "\"/><limit lower=\"" << -limit << "\" upper=\"" << limit
-      << "\" effort=\"1\" velocity=\"1\"/></joint>\n";
-  }
-  u << "</robot>\n";
-  return u.str();
-}
+using test::snakeUrdf;
 
 struct LinkTree {
   Octree source{WorldGrid(Eigen::Vector3d::Zero(), 1.0, 1)};

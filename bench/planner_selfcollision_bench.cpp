@@ -8,7 +8,7 @@
 // the fraction of states in self-collision (the all-pairs loop stops at the first contact).
 // Decides kSelfBroadPhaseAutoLinks (collision_model.h); see docs/planner.md.
 //
-//   build-h7/bench/planner_selfcollision_bench --benchmark_repetitions=5
+//   build/bench/planner_selfcollision_bench --benchmark_repetitions=5
 //       --benchmark_report_aggregates_only=true  (one command line)
 #include <benchmark/benchmark.h>
 
@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "octomotion/planner/collision_model.h"
+#include "snake_robot.h"
 
 namespace {
 
@@ -27,22 +28,7 @@ using namespace octomotion;
 constexpr double kJointLimit = 1.0;  // radians
 constexpr int kStates = 1024;
 
-std::string snakeUrdf(int links, double limit) {
-  std::ostringstream u;
-  u << "<robot name=\"snake" << links << "\">\n";
-  for (int i = 0; i < links; ++i) {
-    u << "<link name=\"l" << i << "\"><collision><origin xyz=\"0.05 0 0\"/><geometry>"
-      << "<box size=\"0.08 0.04 0.04\"/></geometry></collision></link>\n";
-  }
-  for (int i = 1; i < links; ++i) {
-    u << "<joint name=\"j" << i << "\" type=\"revolute\"><parent link=\"l" << i - 1
-      << "\"/><child link=\"l" << i << "\"/><origin xyz=\"0.1 0 0\"/><axis xyz=\""
-      << (i % 2 ? "0 0 1" : "0 1 0") << "\"/><limit lower=\"" << -limit << "\" upper=\"" << limit
-      << "\" effort=\"1\" velocity=\"1\"/></joint>\n";
-  }
-  u << "</robot>\n";
-  return u.str();
-}
+using test::snakeUrdf;
 
 // strategy: 0 = all pairs, else the octree with leaf capacity N = strategy.
 void BM_SelfCheck(benchmark::State& state) {

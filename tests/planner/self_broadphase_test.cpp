@@ -9,28 +9,12 @@
 #include <thread>
 
 #include "octomotion/planner/collision_model.h"
+#include "snake_robot.h"
 
 namespace octomotion {
 namespace {
 
-// A snake of `links` box links (8 x 4 x 4 cm on a 10 cm pitch), joints alternating about z and
-// y, each limited to +-limit rad: curled states touch themselves, straight-ish ones do not.
-std::string snakeUrdf(int links, double limit) {
-  std::ostringstream u;
-  u << "<robot name=\"snake" << links << "\">\n";
-  for (int i = 0; i < links; ++i) {
-    u << "<link name=\"l" << i << "\"><collision><origin xyz=\"0.05 0 0\"/><geometry>"
-      << "<box size=\"0.08 0.04 0.04\"/></geometry></collision></link>\n";
-  }
-  for (int i = 1; i < links; ++i) {
-    u << "<joint name=\"j" << i << "\" type=\"revolute\"><parent link=\"l" << i - 1
-      << "\"/><child link=\"l" << i << "\"/><origin xyz=\"0.1 0 0\"/><axis xyz=\""
-      << (i % 2 ? "0 0 1" : "0 1 0") << "\"/><limit lower=\"" << -limit << "\" upper=\"" << limit
-      << "\" effort=\"1\" velocity=\"1\"/></joint>\n";
-  }
-  u << "</robot>\n";
-  return u.str();
-}
+using test::snakeUrdf;
 
 RobotModel snake(int links, double limit) {
   return RobotModel::fromUrdfString(snakeUrdf(links, limit), "snake.urdf", ".");
