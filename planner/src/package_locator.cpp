@@ -4,12 +4,14 @@
 #include <cstdlib>
 #include <deque>
 #include <filesystem>
+#include <fstream>
 #include <sstream>
 #include <system_error>
 
 #include <tinyxml.h>
 
 #include "octomotion/error.h"
+#include "xml_text.h"
 
 namespace octomotion {
 namespace {
@@ -36,8 +38,20 @@ std::string declaredPackageName(const fs::path& dir) {
   std::error_code ec;
   const fs::path manifest = dir / "package.xml";
   if (!fs::is_regular_file(manifest, ec)) return "";
-  TiXmlDocument doc(manifest.string());
-  if (!doc.LoadFile()) return "";
+  std::ifstream in(manifest, std::ios::binary);
+  std::ostringstream manifest_text;
+  manifest_text << in.rdbuf();
+  if (!in || in.bad()) return "";
+  // A manifest that is not UTF-8 text is treated as unreadable (xml_text.h says why it must not
+  // reach TinyXML).
+  try {
+    detail::requireXmlText(manifest_text.str(), manifest.string());
+  } catch (const FileError&) {
+    return "";
+  }
+  TiXmlDocument doc;
+  doc.Parse(manifest_text.str().c_str());
+  if (doc.Error()) return "";
   const TiXmlElement* root = doc.RootElement();
   if (root == nullptr) return "";
   const TiXmlElement* name = root->FirstChildElement("name");

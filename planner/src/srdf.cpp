@@ -10,6 +10,7 @@
 #include <tinyxml.h>
 
 #include "octomotion/planner/robot_model.h"
+#include "xml_text.h"
 
 namespace octomotion {
 
@@ -28,6 +29,7 @@ void RobotModel::loadSrdfFile(const std::string& path, SrdfMode mode) {
 
 void RobotModel::loadSrdfString(const std::string& srdf_xml, const std::string& source_name,
                                 SrdfMode mode) {
+  detail::requireXmlText(srdf_xml, source_name);
   TiXmlDocument doc;
   doc.Parse(srdf_xml.c_str());
   if (doc.Error()) {

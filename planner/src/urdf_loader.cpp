@@ -21,6 +21,7 @@
 #include "octomotion/planner/package_locator.h"
 #include "octomotion/planner/robot_model.h"
 #include "robot_model_builder.h"
+#include "xml_text.h"
 
 namespace octomotion {
 namespace {
@@ -71,6 +72,7 @@ class Loader {
 
   // --- Pass 1 ---
   void scanXml(const std::string& xml) {
+    detail::requireXmlText(xml, source_);
     TiXmlDocument doc;
     doc.Parse(xml.c_str());
     if (doc.Error()) {

@@ -59,7 +59,8 @@ TEST(BadInput, RobotFiles) {
        {Case{"syntax_error.urdf", urdf, "line"},
         Case{"missing_mesh.urdf", urdf, "does_not_exist.stl"},
         Case{"unknown_joint_type.urdf", urdf, "twisty"}, Case{"cycle.urdf", urdf, "cycle"},
-        Case{"nan_origin.urdf", urdf, "origin"}, Case{"negative_box.urdf", urdf, "box"}}) {
+        Case{"nan_origin.urdf", urdf, "origin"}, Case{"negative_box.urdf", urdf, "box"},
+        Case{"truncated_utf8.urdf", urdf, "truncated UTF-8 sequence at line 7"}}) {
     expectRejected(c);
   }
   RobotModelOptions options;
@@ -102,6 +103,44 @@ TEST(BadInput, PointCloudsAndTrees) {
         Case{"bad_number.xyz", cloud, "line 2"}, Case{"bad_magic.omt", octree, "magic"},
         Case{"unknown_version.omt", octree, ""}, Case{"truncated.bt", octomap, ""}}) {
     expectRejected(c);
+  }
+}
+
+// Found by fuzz/urdf_fuzz (truncated_utf8.urdf is its input): TinyXML steps over the bytes a
+// UTF-8 lead byte announces without looking at them, so a lead byte just before the end of the
+// text made it read past the buffer, in our scan and again inside urdfdom. Text that is not
+// well-formed UTF-8 is now rejected before any XML parser sees it.
+TEST(BadInput, XmlThatIsNotUtf8IsRejectedBeforeParsing) {
+  const std::string head = "<robot name=\"r\"><link name=\"a\"/></robot>";
+  // Well-formed multi-byte text is accepted (a comment in German and a CJK link name).
+  EXPECT_NO_THROW(RobotModel::fromUrdfString(
+      "<!-- Gr\xC3\xBC\xC3\x9F -->\n<robot name=\"r\"><link name=\"\xE8\x85\x95\"/></robot>",
+      "ok.urdf", "."));
+  struct Text {
+    std::string xml;
+    std::string says;
+  };
+  for (const Text& t : {Text{head + "\n\xE0", "truncated UTF-8 sequence at line 2 (byte offset"},
+                        Text{head + "\xF0\x9F\x98", "truncated UTF-8 sequence"},
+                        Text{head + "\xC3<", "truncated UTF-8 sequence"},
+                        Text{"\x80" + head, "invalid UTF-8 byte at line 1 (byte offset 0)"},
+                        Text{head + "\xFF", "invalid UTF-8 byte"},
+                        Text{head + std::string(1, '\0') + "<x/>", "NUL byte"}}) {
+    try {
+      RobotModel::fromUrdfString(t.xml, "text.urdf", ".");
+      ADD_FAILURE() << "accepted: " << t.says;
+    } catch (const FileError& e) {
+      EXPECT_THAT(e.what(), HasSubstr("text.urdf"));
+      EXPECT_THAT(e.what(), HasSubstr(t.says));
+    }
+  }
+  RobotModel robot = RobotModel::fromUrdfString(head, "ok.urdf", ".");
+  try {
+    robot.loadSrdfString("<robot name=\"r\">\xE0", "text.srdf");
+    ADD_FAILURE() << "SRDF accepted";
+  } catch (const FileError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("text.srdf"));
+    EXPECT_THAT(e.what(), HasSubstr("truncated UTF-8 sequence"));
   }
 }
 

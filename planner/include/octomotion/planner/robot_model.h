@@ -105,9 +105,10 @@ class RobotData {
 class RobotModel {
  public:
   // Parses a URDF with urdfdom. Throws FileError (message starts with the path) for an
-  // unreadable file, an XML syntax error, urdfdom's complaints, an unknown, floating or planar
-  // joint type, a cycle, several root links, a non-finite number, a non-positive size, a bad
-  // mimic reference or a collision mesh that cannot be resolved (naming link and URI).
+  // unreadable file, text that is not UTF-8 (or holds a NUL byte), an XML syntax error, urdfdom's
+  // complaints, an unknown, floating or planar joint type, a cycle, several root links, a
+  // non-finite number, a non-positive size, a bad mimic reference or a collision mesh that cannot
+  // be resolved (naming link and URI).
   static RobotModel fromUrdfFile(const std::string& path, const RobotModelOptions& options = {});
   // The same for URDF text; `source_name` stands in for the path in messages and relative mesh
   // paths are resolved against `base_dir`.
