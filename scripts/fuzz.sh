@@ -8,7 +8,8 @@
 # over 10 s, more than 2 GB, an exception other than octomotion::Error, or a failed oracle); the
 # reproducer is kept in <build>/fuzz-findings/<name>/ and the log printed.
 # Environment: OCTOMOTION_FUZZ_BUILD_DIR (default build-fuzz), OCTOMOTION_CMAKE_ARGS (extra cmake
-# args, e.g. -DCMAKE_CXX_COMPILER_LAUNCHER=ccache).
+# args, e.g. -DCMAKE_CXX_COMPILER_LAUNCHER=ccache), OCTOMOTION_FUZZ_SEED (libFuzzer's -seed; CI
+# fixes it so a run can be replayed; unset, every run explores differently).
 set -euo pipefail
 
 seconds=${1:-60}
@@ -47,6 +48,7 @@ for t in "${targets[@]}"; do
   args=(-max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1
     -artifact_prefix="$findings/")
   [[ -f $root/fuzz/dict/$t.dict ]] && args+=(-dict="$root/fuzz/dict/$t.dict")
+  [[ -n ${OCTOMOTION_FUZZ_SEED:-} ]] && args+=(-seed="$OCTOMOTION_FUZZ_SEED")
   echo "== fuzz $t (${seconds} s)"
   # The harnesses write their temporary input files to TMPDIR.
   if TMPDIR=$work ASAN_OPTIONS=detect_leaks=1 LSAN_OPTIONS="suppressions=$root/fuzz/lsan.supp" \
