@@ -8,8 +8,10 @@
 #include <map>
 #include <sstream>
 
+#include "octomotion/motion/box_overlap.h"
 #include "octomotion/motion/collides.h"
 #include "octomotion/motion/move_tree.h"
+#include "octomotion/motion/pose.h"
 #include "octomotion/octree/mesh.h"
 #include "octomotion/octree/set_ops.h"
 #include "octomotion/octree/traversal.h"
@@ -267,6 +269,7 @@ OctreeCollisionModel::OctreeCollisionModel(RobotModel robot, const EnvironmentGe
       const Eigen::Vector3d lo = source_grid.cubeMin(Cube{0, b->min});
       const Eigen::Vector3d hi = source_grid.cubeMax(Cube{0, b->max});
       lt.center_L = (lo + hi) / 2;
+      lt.half_L = (hi - lo) / 2;
       lt.radius = (hi - lo).norm() / 2;
       // Clearance spheres: the level-kSphereLevel ancestors of the black leaves.
       const int level = std::min(kSphereLevel, source_grid.depth());
@@ -454,10 +457,24 @@ bool OctreeCollisionModel::linkHitsEnvironment(const LinkTree& lt, const Eigen::
   const Eigen::Vector3d c_W = X_WL * lt.center_L;
   const double reach = lt.radius + std::sqrt(3.0) * environment_.grid().voxelSize();
   if (distanceToBox(c_W, environment_box_W_) > reach) return false;
-  if (!object_boxes_W_.empty()) {
+  // Then the box of the link's black voxels, oriented with the link: a link voxel can only meet
+  // an environment voxel inside the environment's (or an object's) box. The margin, a millionth
+  // of a voxel, is the overlap the colour rule itself demands (kMotionTieTolerance).
+  const double margin = kMotionTieTolerance * environment_.grid().voxelSize();
+  const Eigen::Matrix3d& R_WL = X_WL.linear();
+  auto boxNear = [&](const Eigen::AlignedBox3d& box) {
+    return distanceToBox(c_W, box) <= reach &&
+           boxesOverlap(box.center(), box.sizes() / 2, R_WL, c_W, lt.half_L, margin);
+  };
+  if (object_boxes_W_.empty()) {
+    if (!boxesOverlap(environment_box_W_.center(), environment_box_W_.sizes() / 2, R_WL, c_W,
+                      lt.half_L, margin)) {
+      return false;
+    }
+  } else {
     bool near = false;
     for (const Eigen::AlignedBox3d& box : object_boxes_W_) {
-      if (distanceToBox(c_W, box) <= reach) {
+      if (boxNear(box)) {
         near = true;
         break;
       }
@@ -473,16 +490,31 @@ bool OctreeCollisionModel::linkHitsEnvironment(const LinkTree& lt, const Eigen::
 
 bool OctreeCollisionModel::linksHit(const LinkTree& a, const Eigen::Isometry3d& X_WA,
                                     const LinkTree& b, const Eigen::Isometry3d& X_WB,
-                                    CheckerPath path, CollisionScratch& fused) const {
-  const Eigen::Vector3d ca = X_WA * a.center_L, cb = X_WB * b.center_L;
-  // B's voxels placed on A's grid reach up to one of A's voxel diagonals beyond B's sphere.
-  if ((ca - cb).norm() > a.radius + b.radius + a.source_diagonal) return false;
-  // B's source tree placed in A's frame, tested against A's source tree.
-  const Eigen::Isometry3d X_AB = X_WA.inverse() * X_WB;
+                                    const Eigen::Vector3d& cb_W, CheckerPath path,
+                                    CollisionScratch& fused) const {
+  // B's source tree placed in A's frame, tested against A's source tree. A voxel of A that a
+  // moved voxel of B overlaps lies in A's box, so the boxes of their black voxels must overlap
+  // (much tighter than the spheres for long links). Only the rotation is formed for the test.
+  const Eigen::Matrix3d R_AW = X_WA.linear().transpose();
+  const Eigen::Matrix3d R_AB = R_AW * X_WB.linear();
+  if (!boxesOverlap(a.center_L, a.half_L, R_AB, R_AW * (cb_W - X_WA.translation()), b.half_L,
+                    kMotionTieTolerance * a.source.grid().voxelSize())) {
+    return false;
+  }
+  Eigen::Isometry3d X_AB = Eigen::Isometry3d::Identity();
+  X_AB.linear() = R_AB;
+  X_AB.translation() = R_AW * (X_WB.translation() - X_WA.translation());
   if (path == CheckerPath::kFused) {
     return collides(*b.movable, X_AB, a.source, options_.rounding, fused);
   }
   return intersects(moveTree(b.source, X_AB, a.source.grid(), options_.rounding), a.source);
+}
+
+void OctreeCollisionModel::placeCentres(CheckScratch& scratch) const {
+  scratch.centres_W.resize(links_.size());
+  for (std::size_t i = 0; i < links_.size(); ++i) {
+    scratch.centres_W[i] = scratch.robot.linkPose(links_[i].link) * links_[i].center_L;
+  }
 }
 
 bool OctreeCollisionModel::environmentInCollision(CheckerPath path, CheckScratch& scratch) const {
@@ -514,9 +546,11 @@ bool OctreeCollisionModel::selfBroadPhaseInCollision(CheckerPath path,
   // links that pass linksHit's pre-test (centre distance <= r_a + r_b + diagonal) then always have
   // overlapping boxes even after rounding, so every pair the all-pairs loop would test in depth is
   // a candidate here.
+  placeCentres(scratch);
   for (std::size_t i = 0; i < self_links_.size(); ++i) {
-    const LinkTree& lt = links_[static_cast<std::size_t>(self_links_[i])];
-    const Eigen::Vector3d c = scratch.robot.linkPose(lt.link) * lt.center_L;
+    const auto slot = static_cast<std::size_t>(self_links_[i]);
+    const LinkTree& lt = links_[slot];
+    const Eigen::Vector3d& c = scratch.centres_W[slot];
     const double r = (lt.radius + lt.source_diagonal) * (1 + 1e-9) + 1e-9;
     const Eigen::Vector3d half = Eigen::Vector3d::Constant(r);
     tree.move(static_cast<std::uint32_t>(i), {c - half, c + half});
@@ -525,20 +559,27 @@ bool OctreeCollisionModel::selfBroadPhaseInCollision(CheckerPath path,
   bool hit = false;
   tree.forEachCandidatePair([&](std::uint32_t a, std::uint32_t b) {
     if (hit || !self_checked_[a * m + b]) return;
-    const LinkTree& la = links_[static_cast<std::size_t>(self_links_[a])];
-    const LinkTree& lb = links_[static_cast<std::size_t>(self_links_[b])];
-    hit = linksHit(la, scratch.robot.linkPose(la.link), lb, scratch.robot.linkPose(lb.link), path,
-                   scratch.fused);
+    const auto sa = static_cast<std::size_t>(self_links_[a]);
+    const auto sb = static_cast<std::size_t>(self_links_[b]);
+    const LinkTree& la = links_[sa];
+    const LinkTree& lb = links_[sb];
+    hit = spheresMeet(la, scratch.centres_W[sa], lb, scratch.centres_W[sb]) &&
+          linksHit(la, scratch.robot.linkPose(la.link), lb, scratch.robot.linkPose(lb.link),
+                   scratch.centres_W[sb], path, scratch.fused);
   });
   return hit;
 }
 
 bool OctreeCollisionModel::selfPairsInCollision(CheckerPath path, CheckScratch& scratch) const {
+  placeCentres(scratch);
+  const std::vector<Eigen::Vector3d>& c_W = scratch.centres_W;
   for (const auto& [sa, sb] : pairs_) {
-    const LinkTree& a = links_[static_cast<std::size_t>(sa)];
-    const LinkTree& b = links_[static_cast<std::size_t>(sb)];
-    if (linksHit(a, scratch.robot.linkPose(a.link), b, scratch.robot.linkPose(b.link), path,
-                 scratch.fused)) {
+    const auto ia = static_cast<std::size_t>(sa), ib = static_cast<std::size_t>(sb);
+    const LinkTree& a = links_[ia];
+    const LinkTree& b = links_[ib];
+    if (spheresMeet(a, c_W[ia], b, c_W[ib]) &&
+        linksHit(a, scratch.robot.linkPose(a.link), b, scratch.robot.linkPose(b.link), c_W[ib],
+                 path, scratch.fused)) {
       return true;
     }
   }

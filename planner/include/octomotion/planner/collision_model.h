@@ -128,7 +128,8 @@ struct CheckScratch {
   RobotData robot;
   CollisionScratch fused;
   std::optional<broadphase::NObjectsOctree> self_broad_phase;
-  std::uint64_t owner = 0;  // id() of the model it was made for
+  std::vector<Eigen::Vector3d> centres_W;  // per modelled link: bounding-sphere centre in W
+  std::uint64_t owner = 0;                 // id() of the model it was made for
 };
 
 class OctreeCollisionModel {
@@ -192,15 +193,26 @@ class OctreeCollisionModel {
     std::unique_ptr<const MovableSource> movable;  // the source prepared for the fused query
     Eigen::Vector3d center_L;                      // bounding sphere of the black voxels
     double radius = 0;
-    double source_diagonal = 0;              // of one source voxel (metres)
+    Eigen::Vector3d half_L = Eigen::Vector3d::Zero();  // their box: centre center_L, half-sides
+    double source_diagonal = 0;                        // of one source voxel (metres)
     bool touches_environment = true;         // false: cannot reach the modelled environment
     std::vector<Eigen::Vector4d> spheres_L;  // coarse cover of the black voxels (clearance)
   };
 
   bool linkHitsEnvironment(const LinkTree& lt, const Eigen::Isometry3d& X_WL, CheckerPath path,
                            CollisionScratch& fused) const;
+  // The self-pair test in two stages, cheapest first. spheresMeet: the bounding spheres (centres
+  // in W from placeCentres) are close enough for B's voxels placed on A's grid to reach A.
+  static bool spheresMeet(const LinkTree& a, const Eigen::Vector3d& ca_W, const LinkTree& b,
+                          const Eigen::Vector3d& cb_W) {
+    const double reach = a.radius + b.radius + a.source_diagonal;
+    return (ca_W - cb_W).squaredNorm() <= reach * reach;
+  }
+  // linksHit, for pairs whose spheres meet: the oriented boxes, then the trees.
   bool linksHit(const LinkTree& a, const Eigen::Isometry3d& X_WA, const LinkTree& b,
-                const Eigen::Isometry3d& X_WB, CheckerPath path, CollisionScratch& fused) const;
+                const Eigen::Isometry3d& X_WB, const Eigen::Vector3d& cb_W, CheckerPath path,
+                CollisionScratch& fused) const;
+  void placeCentres(CheckScratch& scratch) const;  // scratch.centres_W[slot], every modelled link
   bool selfPairsInCollision(CheckerPath path, CheckScratch& scratch) const;
   bool selfBroadPhaseInCollision(CheckerPath path, CheckScratch& scratch) const;
   broadphase::NObjectsOctree makeSelfBroadPhase() const;
