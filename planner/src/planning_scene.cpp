@@ -96,6 +96,25 @@ ob::PlannerPtr makePlanner(const std::string& name, const ob::SpaceInformationPt
   return it->second(si);
 }
 
+void boundMotionStep(ompl::base::SpaceInformation& si, const RobotModel& robot, double reach,
+                     double resolution) {
+  // Motions are checked state by state, so a collision between two checked states goes unseen
+  // unless the robot moves less than about one voxel between them. OMPL's default step (1% of
+  // the space's extent) moves an arm's tool by centimetres; bound the step instead so that no
+  // point of the robot moves more than kMaxStepVoxels voxels (docs/validation.md §4):
+  // arms: |dp| <= sum_j R |dq_j| <= R sqrt(n) |dq| (R: the robot's reach from its base);
+  // SE(3): |dp| <= |dt| + r theta = |dt| + 2 r d_SO3 <= max(1, 2 r) d (r: the body's size).
+  const double speed = robot.isFreeFlying()
+                           ? std::max(1.0, 2 * reach)
+                           : std::max(1e-9, reach * std::sqrt(std::max(1, robot.variableCount())));
+  const double extent = si.getStateSpace()->getMaximumExtent();
+  const double fraction = kMaxStepVoxels * resolution / speed / extent;
+  if (std::isfinite(fraction) && fraction > 0 &&
+      fraction < si.getStateValidityCheckingResolution()) {
+    si.setStateValidityCheckingResolution(fraction);
+  }
+}
+
 PlanningScene loadPlanningScene(const std::string& scene_path, const SceneOverrides& overrides,
                                 const WarningSink& warnings) {
   PlanningScene scene;
@@ -201,25 +220,10 @@ PlanningScene loadPlanningScene(const std::string& scene_path, const SceneOverri
   const Eigen::AlignedBox3d* bounds = free_flying ? &*spec.problem.bounds : nullptr;
   scene.setup = std::make_shared<og::SimpleSetup>(makeStateSpace(model_robot, bounds));
   const ob::SpaceInformationPtr& si = scene.setup->getSpaceInformation();
-  // Motions are checked state by state, so a collision between two checked states goes unseen
-  // unless the robot moves less than about one voxel between them. OMPL's default step (1% of
-  // the space's extent) moves an arm's tool by centimetres; bound the step instead so that no
-  // point of the robot moves more than kMaxStepVoxels environment voxels (docs/validation.md §4):
-  // arms: |dp| <= sum_j R |dq_j| <= R sqrt(n) |dq| (R: the robot's reach from its base);
-  // SE(3): |dp| <= |dt| + r theta = |dt| + 2 r d_SO3 <= max(1, 2 r) d (r: the body's size).
-  {
-    const double reach =
-        free_flying ? robot_diagonal : scene.model->report().reach_W.sizes().maxCoeff() / 2;
-    const double speed =
-        free_flying ? std::max(1.0, 2 * reach)
-                    : std::max(1e-9, reach * std::sqrt(std::max(1, model_robot.variableCount())));
-    const double extent = si->getStateSpace()->getMaximumExtent();
-    const double fraction = kMaxStepVoxels * options.resolution / speed / extent;
-    if (std::isfinite(fraction) && fraction > 0 &&
-        fraction < si->getStateValidityCheckingResolution()) {
-      si->setStateValidityCheckingResolution(fraction);
-    }
-  }
+  boundMotionStep(
+      *si, model_robot,
+      free_flying ? robot_diagonal : scene.model->report().reach_W.sizes().maxCoeff() / 2,
+      options.resolution);
   scene.checker = spec.octree.checker;
   if (scene.checker == "fcl") {
     scene.setup->setStateValidityChecker(std::make_shared<FclValidityChecker>(si, scene.fcl_model));

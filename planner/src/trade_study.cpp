@@ -285,11 +285,14 @@ double property(const std::map<std::string, std::string>& run, const std::string
 }
 
 PlanRow runPlanning(const StudyScene& scene, const PlanSetting& setting,
-                    const StudyPlanner& planner, const TradeStudyOptions& options) {
+                    const StudyPlanner& planner, double motion_reach,
+                    const TradeStudyOptions& options) {
   const RobotModel& robot = *scene.robot;
   const bool free_flying = robot.isFreeFlying();
   og::SimpleSetup ss(makeStateSpace(robot, free_flying ? &*scene.bounds : nullptr));
   const ob::SpaceInformationPtr& si = ss.getSpaceInformation();
+  // Every checker plans with the motion step `octomotion plan` uses for the scene.
+  boundMotionStep(*si, robot, motion_reach, scene.resolution);
   ss.setStateValidityChecker(setting.make(si));
   auto toState = [&](const StateSpec& s) {
     ob::ScopedState<> state(si);
@@ -475,6 +478,8 @@ TradeStudyResult runTradeStudy(const TradeStudyOptions& options) {
   const double fcl_mean = result.checks.front().mean_us;
 
   std::vector<PlanSetting> plan_settings;
+  // boundMotionStep's reach: the body's diagonal, or (arms) from the octree model's report.
+  double motion_reach = scene.robot_diagonal;
   const bool planning =
       options.runs > 0 && !options.planners.empty() && spec.problem.start && spec.problem.goal;
   if (planning) {
@@ -531,6 +536,7 @@ TradeStudyResult runTradeStudy(const TradeStudyOptions& options) {
         t0 = Clock::now();
         model = std::make_shared<const OctreeCollisionModel>(robot, environment, mo);
         build = seconds(t0, Clock::now());
+        if (!free_flying) motion_reach = model->report().reach_W.sizes().maxCoeff() / 2;
       } catch (const Error& e) {
         say(spec.name + ": octree at " + resolutionLabel(resolution) + " skipped: " + e.what());
         continue;
@@ -579,7 +585,7 @@ TradeStudyResult runTradeStudy(const TradeStudyOptions& options) {
     }
     for (const StudyPlanner& planner : options.planners) {
       for (const PlanSetting& setting : plan_settings) {
-        PlanRow row = runPlanning(scene, setting, planner, options);
+        PlanRow row = runPlanning(scene, setting, planner, motion_reach, options);
         say(spec.name + ": " + planner.name + " with " +
             settingName(setting.checker, setting.resolution, setting.rounding) + ": " +
             std::to_string(row.solved) + "/" + std::to_string(row.runs) + " solved, median " +

@@ -93,6 +93,14 @@ struct PlanningScene {
   std::string checker;                    // the checker in use
 };
 
+// Sets the space's state-validity checking resolution (if OMPL's is coarser) so that no point of
+// the robot moves more than two voxels of `resolution` between the checked states of a motion.
+// `reach`: for arms, half the largest side of the region the robot can reach
+// (CollisionModelReport::reach_W); for free-flying bodies, the robot's diagonal. loadPlanningScene
+// and the trade study's planning both use it.
+void boundMotionStep(ompl::base::SpaceInformation& si, const RobotModel& robot, double reach,
+                     double resolution);
+
 // Throws octomotion::Error (naming the file and field) for anything wrong with the scene.
 PlanningScene loadPlanningScene(const std::string& scene_path, const SceneOverrides& overrides = {},
                                 const WarningSink& warnings = {});
