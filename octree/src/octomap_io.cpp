@@ -384,7 +384,10 @@ void fillOctoMap(ExportTree& out, const Octree& tree, const std::int64_t offset[
 
 }  // namespace
 
-void exportOctoMap(const Octree& tree, const std::string& path, bool write_free_space) {
+namespace {
+
+// Builds the OctoMap of `tree` (see exportOctoMap for the conditions it checks, and throws for).
+std::unique_ptr<ExportTree> buildOctoMap(const Octree& tree, bool write_free_space) {
   const WorldGrid& grid = tree.grid();
   const Alignment al = alignToOctoMap(grid);
 
@@ -412,8 +415,21 @@ void exportOctoMap(const Octree& tree, const std::string& path, bool write_free_
     }
   }
 
-  ExportTree out(grid.voxelSize());
-  fillOctoMap(out, tree, al.offset, write_free_space);
+  auto out = std::make_unique<ExportTree>(grid.voxelSize());
+  fillOctoMap(*out, tree, al.offset, write_free_space);
+  return out;
+}
+
+}  // namespace
+
+std::unique_ptr<octomap::OcTree> toOctoMap(const Octree& tree) {
+  return buildOctoMap(tree, false);
+}
+
+void exportOctoMap(const Octree& tree, const std::string& path, bool write_free_space) {
+  const std::unique_ptr<ExportTree> built = buildOctoMap(tree, write_free_space);
+  const ExportTree& out = *built;
+  const WorldGrid& grid = tree.grid();
 
   // The header is written here rather than by liboctomap so that the resolution keeps all its
   // digits (liboctomap prints 6 significant ones); the node data is liboctomap's own encoding.

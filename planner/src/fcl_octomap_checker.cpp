@@ -14,57 +14,11 @@
 
 namespace octomotion {
 
-namespace {
-
-constexpr int kOctoMapDepth = 16;
-
-// liboctomap makes a root only as a side effect of updating a voxel at full depth; inserting
-// whole cubes at their own depth needs the bare root, which only a derived class can make.
-class CubeOcTree : public octomap::OcTree {
- public:
-  using octomap::OcTree::OcTree;
-  octomap::OcTreeNode* ensureRoot() {
-    if (root == nullptr) {
-      root = new octomap::OcTreeNode();
-      tree_size = 1;
-      size_changed = true;
-    }
-    return root;
-  }
-};
-
-// On the native grid our voxel coordinates are OctoMap keys and a level-L cube is the OctoMap
-// node at depth 16 - L with the same keys (same child numbering, Ahuja & Nash Fig. 1), so each
-// black leaf becomes one occupied node, reached by following its key bits from the root.
-std::shared_ptr<CubeOcTree> toOctoMap(const Octree& tree, double resolution) {
-  auto map = std::make_shared<CubeOcTree>(resolution);
-  const float occupied = map->getClampingThresMaxLog();
-  tree.forEachBlackLeaf([&](const Cube& c) {
-    octomap::OcTreeNode* node = map->ensureRoot();
-    const int depth = kOctoMapDepth - c.level;
-    for (int d = 0; d < depth; ++d) {
-      const int bit = kOctoMapDepth - 1 - d;
-      const unsigned k = ((c.origin.x >> bit) & 1u) | (((c.origin.y >> bit) & 1u) << 1) |
-                         (((c.origin.z >> bit) & 1u) << 2);
-      node = map->nodeChildExists(node, k) ? map->getNodeChild(node, k)
-                                           : map->createNodeChild(node, k);
-    }
-    node->setLogOdds(occupied);
-  });
-  if (map->getRoot() != nullptr) {
-    map->updateInnerOccupancy();
-    map->prune();
-  }
-  return map;
-}
-
-}  // namespace
-
 struct FclOctomapCollisionModel::Geometry {
   Geometry(const RobotModel& model, bool keep_mesh_root_transform, bool center_mesh_vertices)
       : robot(model, keep_mesh_root_transform, center_mesh_vertices) {}
   fcl_internal::RobotGeometry robot;
-  std::shared_ptr<CubeOcTree> map;
+  std::shared_ptr<const octomap::OcTree> map;
   std::unique_ptr<fcl::CollisionObjectd> environment;  // null when nothing is occupied
 };
 
@@ -84,11 +38,11 @@ FclOctomapCollisionModel::FclOctomapCollisionModel(const RobotModel& robot,
   const auto start = std::chrono::steady_clock::now();
   const WorldGrid grid = octomapNativeGrid(resolution);
   const Octree voxels = environment.voxelize(grid, Rounding::kConservative);
-  geometry_->map = toOctoMap(voxels, resolution);
+  // On the native grid our cubes are OctoMap's nodes of the same keys (octomap_io.h).
+  geometry_->map = toOctoMap(voxels);
   octomap_bytes_ = geometry_->map->memoryUsage();
   if (const auto b = voxels.bounds()) {
-    auto tree = std::make_shared<fcl::OcTreed>(
-        std::static_pointer_cast<const octomap::OcTree>(geometry_->map));
+    auto tree = std::make_shared<fcl::OcTreed>(geometry_->map);
     geometry_->environment = std::make_unique<fcl::CollisionObjectd>(tree);
     // FCL bounds an OcTree by its whole key range; the occupied voxels' box is the useful
     // pre-test for the links.

@@ -1,5 +1,6 @@
 // Interoperation with OctoMap's binary occupancy files (".bt", liboctomap's OcTree::writeBinary).
-// liboctomap is a private dependency: nothing of it appears here.
+// liboctomap is a private dependency: only toOctoMap names one of its types (declared, not
+// included), for callers that link liboctomap themselves.
 //
 // OctoMap addresses voxels by 16-bit keys per axis: its tree always has depth 16 and key 32768
 // is the voxel whose minimum corner is coordinate 0, so voxel key k spans
@@ -11,11 +12,16 @@
 // isNodeOccupied() holds. Free and unknown space both become white.
 #pragma once
 
+#include <memory>
 #include <string>
 
 #include "octomotion/error.h"
 #include "octomotion/octree/octree.h"
 #include "octomotion/octree/rounding.h"
+
+namespace octomap {
+class OcTree;
+}  // namespace octomap
 
 namespace octomotion {
 
@@ -46,6 +52,11 @@ Octree importOctoMap(const std::string& path, const WorldGrid& grid, Rounding ro
 // Throws FileError when the file cannot be written. The resolution is stored at full precision,
 // so importOctoMap(path) on the result reproduces the occupancy, key for key.
 void exportOctoMap(const Octree& tree, const std::string& path, bool write_free_space = false);
+
+// The same OctoMap in memory (black voxels as occupied leaves, white space unknown, pruned), for
+// libraries that take an octomap::OcTree (e.g. fcl::OcTree). Same conditions and exceptions as
+// exportOctoMap.
+std::unique_ptr<octomap::OcTree> toOctoMap(const Octree& tree);
 
 // What liboctomap's OcTree takes in memory for the same occupancy (black = occupied leaves, white
 // = unknown, pruned), as its memoryUsage() reports: sizeof(OcTreeNode) (16 bytes: a pointer to a
