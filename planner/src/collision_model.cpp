@@ -8,6 +8,7 @@
 #include <map>
 #include <sstream>
 
+#include "collision_meshes.h"
 #include "octomotion/motion/box_overlap.h"
 #include "octomotion/motion/collides.h"
 #include "octomotion/motion/move_tree.h"
@@ -147,7 +148,7 @@ OctreeCollisionModel::OctreeCollisionModel(RobotModel robot, const EnvironmentGe
   report_.link_resolution = link_res;
 
   // 1. Each link's geometry in its own frame (meshes loaded once), and its extent.
-  std::map<std::pair<std::string, std::array<double, 3>>, TriangleMesh> meshes;
+  detail::CollisionMeshes meshes(options.keep_mesh_root_transform, options.center_mesh_vertices);
   const int n_links = robot_.linkCount();
   const auto n = static_cast<std::size_t>(n_links);
   std::vector<Eigen::AlignedBox3d> boxes_L(n);
@@ -164,20 +165,9 @@ OctreeCollisionModel::OctreeCollisionModel(RobotModel robot, const EnvironmentGe
         box_L.extend(boundingBox(*prim, e.X_LE));
         element_meshes[static_cast<std::size_t>(i)].push_back(nullptr);
       } else {
-        const auto& ref = std::get<MeshRef>(e.geometry);
-        const auto key = std::make_pair(
-            ref.path, std::array<double, 3>{ref.scale.x(), ref.scale.y(), ref.scale.z()});
-        auto it = meshes.find(key);
-        if (it == meshes.end()) {
-          MeshLoadOptions mo;
-          mo.keep_root_transform = options.keep_mesh_root_transform;
-          mo.scale = ref.scale;
-          TriangleMesh mesh = loadMesh(ref.path, mo);
-          if (options.center_mesh_vertices) centerOnVertexMean(mesh);
-          it = meshes.emplace(key, std::move(mesh)).first;
-        }
-        for (const Eigen::Vector3d& v : it->second.vertices) box_L.extend(e.X_LE * v);
-        element_meshes[static_cast<std::size_t>(i)].push_back(&it->second);
+        const TriangleMesh& mesh = meshes.get(std::get<MeshRef>(e.geometry));
+        for (const Eigen::Vector3d& v : mesh.vertices) box_L.extend(e.X_LE * v);
+        element_meshes[static_cast<std::size_t>(i)].push_back(&mesh);
       }
     }
     if (box_L.isEmpty()) continue;

@@ -14,6 +14,8 @@
 #include <fcl/narrowphase/collision.h>
 #include <fcl/narrowphase/distance.h>
 
+#include "collision_meshes.h"
+
 namespace octomotion::fcl_internal {
 
 Geom shapeOf(const Primitive& p) {
@@ -63,7 +65,8 @@ bool collidePair(const fcl::CollisionObjectd& a, const fcl::CollisionObjectd& b,
 
 RobotGeometry::RobotGeometry(const RobotModel& robot, bool keep_mesh_root_transform,
                              bool center_mesh_vertices) {
-  std::map<std::pair<std::string, std::array<double, 3>>, Geom> meshes;
+  detail::CollisionMeshes meshes(keep_mesh_root_transform, center_mesh_vertices);
+  std::map<const TriangleMesh*, Geom> geoms;  // one FCL model per loaded mesh
   std::vector<std::vector<int>> link_elements(static_cast<std::size_t>(robot.linkCount()));
   for (int l = 0; l < robot.linkCount(); ++l) {
     for (const CollisionElement& e : robot.link(l).collision) {
@@ -71,18 +74,9 @@ RobotGeometry::RobotGeometry(const RobotModel& robot, bool keep_mesh_root_transf
       if (const auto* p = std::get_if<Primitive>(&e.geometry)) {
         g = shapeOf(*p);
       } else {
-        const auto& ref = std::get<MeshRef>(e.geometry);
-        const auto key = std::make_pair(
-            ref.path, std::array<double, 3>{ref.scale.x(), ref.scale.y(), ref.scale.z()});
-        auto it = meshes.find(key);
-        if (it == meshes.end()) {
-          MeshLoadOptions options;
-          options.keep_root_transform = keep_mesh_root_transform;
-          options.scale = ref.scale;
-          TriangleMesh mesh = loadMesh(ref.path, options);
-          if (center_mesh_vertices) centerOnVertexMean(mesh);
-          it = meshes.emplace(key, meshOf(mesh)).first;
-        }
+        const TriangleMesh& mesh = meshes.get(std::get<MeshRef>(e.geometry));
+        auto it = geoms.find(&mesh);
+        if (it == geoms.end()) it = geoms.emplace(&mesh, meshOf(mesh)).first;
         g = it->second;
       }
       link_elements[static_cast<std::size_t>(l)].push_back(static_cast<int>(elements_.size()));

@@ -14,6 +14,7 @@
 #include <assimp/scene.h>
 #include <assimp/Exporter.hpp>
 
+#include "collision_meshes.h"
 #include "octomotion/error.h"
 #include "octomotion/motion/move_tree.h"
 #include "octomotion/octree/mesh.h"
@@ -102,19 +103,13 @@ TriangleMesh primitiveMesh(const Primitive& p) {
 }
 
 // The link's collision elements as one mesh in its frame L.
-MeshBuffer linkMesh(const Link& link, const GltfExportOptions& options) {
+MeshBuffer linkMesh(const Link& link, detail::CollisionMeshes& meshes) {
   MeshBuffer buffer;
   for (const CollisionElement& e : link.collision) {
     if (const auto* p = std::get_if<Primitive>(&e.geometry)) {
       buffer.append(primitiveMesh(*p), e.X_LE);
     } else {
-      const auto& ref = std::get<MeshRef>(e.geometry);
-      MeshLoadOptions mo;
-      mo.keep_root_transform = options.keep_mesh_root_transform;
-      mo.scale = ref.scale;
-      TriangleMesh mesh = loadMesh(ref.path, mo);
-      if (options.center_mesh_vertices) centerOnVertexMean(mesh);
-      buffer.append(mesh, e.X_LE);
+      buffer.append(meshes.get(std::get<MeshRef>(e.geometry)), e.X_LE);
     }
   }
   return buffer;
@@ -491,10 +486,12 @@ GltfExportReport exportGlb(const OctreeCollisionModel& model, const std::vector<
     std::vector<std::unique_ptr<aiNode>> children;
     materials.push_back(makeMaterial("robot", kRobotColor));
     const auto robot_material = static_cast<unsigned>(materials.size() - 1);
+    detail::CollisionMeshes robot_meshes(options.keep_mesh_root_transform,
+                                         options.center_mesh_vertices);
     for (int i = 0; i < robot.linkCount(); ++i) {
       const Link& link = robot.link(i);
       if (!link.hasCollision()) continue;
-      const MeshBuffer mesh = linkMesh(link, options);
+      const MeshBuffer mesh = linkMesh(link, robot_meshes);
       if (mesh.empty()) continue;
       const std::string& id = link_ids[static_cast<std::size_t>(i)];
       const std::string name = "link_" + id;

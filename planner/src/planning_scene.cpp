@@ -23,6 +23,7 @@
 #include <ompl/geometric/planners/sbl/SBL.h>
 #include <ompl/util/RandomNumbers.h>
 
+#include "collision_meshes.h"
 #include "octomotion/octree/mesh.h"
 #include "octomotion/planner/octree_validity_checker.h"
 
@@ -45,17 +46,17 @@ Eigen::AlignedBox3d robotGeometryBox(const RobotModel& robot) {
   const std::vector<double> q(static_cast<std::size_t>(robot.variableCount()), 0.0);
   robot.forwardKinematics(q.data(), q.size(), data);
   Eigen::AlignedBox3d box;
+  // A size estimate: the files' meshes as stored (no root transform, not centred).
+  detail::CollisionMeshes meshes(false, false);
   for (int l = 0; l < robot.linkCount(); ++l) {
     for (const CollisionElement& e : robot.link(l).collision) {
       const Eigen::Isometry3d X = data.linkPose(l) * e.X_LE;
       if (const auto* p = std::get_if<Primitive>(&e.geometry)) {
         box.extend(boundingBox(*p, X));
       } else {
-        const auto& ref = std::get<MeshRef>(e.geometry);
-        MeshLoadOptions options;
-        options.keep_root_transform = false;
-        options.scale = ref.scale;
-        for (const Eigen::Vector3d& v : loadMesh(ref.path, options).vertices) box.extend(X * v);
+        for (const Eigen::Vector3d& v : meshes.get(std::get<MeshRef>(e.geometry)).vertices) {
+          box.extend(X * v);
+        }
       }
     }
   }
