@@ -793,25 +793,47 @@ void writeTargets(const TradeStudyResult& result, std::ostream& out) {
   out << "\n";
 }
 
-void writeTradeoffPlotData(const TradeStudyResult& result, std::ostream& out) {
-  // Curves: each checker x rounding across resolutions; FCL is one point at 0 %.
+namespace {
+
+// gnuplot data: one block per curve (blocks two blank lines apart, each headed by the curve's
+// quoted name and `columns`), curves in order of first appearance; `name(row)` picks a row's
+// curve and `point(row)` writes its lines.
+template <class Row, class Name, class Point>
+void writeCurves(const std::vector<Row>& rows, const char* columns, Name name, Point point,
+                 std::ostream& out) {
   std::vector<std::string> curves;
-  for (const CheckRow& r : result.checks) {
-    const std::string name = r.checker + (r.rounding.empty() ? "" : " " + r.rounding);
-    if (std::find(curves.begin(), curves.end(), name) == curves.end()) curves.push_back(name);
+  for (const Row& r : rows) {
+    const std::string n = name(r);
+    if (std::find(curves.begin(), curves.end(), n) == curves.end()) curves.push_back(n);
   }
   out << std::setprecision(6);
   bool first = true;
   for (const std::string& curve : curves) {
     if (!first) out << "\n\n";
     first = false;
-    out << '"' << curve << "\" fp_percent mean_us resolution_cm\n";
-    for (const CheckRow& r : result.checks) {
-      if (r.checker + (r.rounding.empty() ? "" : " " + r.rounding) != curve) continue;
-      out << 100 * r.fp_rate << ' ' << r.mean_us << ' ' << 100 * r.resolution << '\n';
+    out << '"' << curve << "\" " << columns << '\n';
+    for (const Row& r : rows) {
+      if (name(r) == curve) point(r);
     }
   }
   out << '\n';
+}
+
+std::string withRounding(const std::string& name, const std::string& rounding) {
+  return rounding.empty() ? name : name + " " + rounding;
+}
+
+}  // namespace
+
+void writeTradeoffPlotData(const TradeStudyResult& result, std::ostream& out) {
+  // Curves: each checker x rounding across resolutions; FCL is one point at 0 %.
+  writeCurves(
+      result.checks, "fp_percent mean_us resolution_cm",
+      [](const CheckRow& r) { return withRounding(r.checker, r.rounding); },
+      [&](const CheckRow& r) {
+        out << 100 * r.fp_rate << ' ' << r.mean_us << ' ' << 100 * r.resolution << '\n';
+      },
+      out);
 }
 
 void writePlanningPlotData(const TradeStudyResult& result, std::ostream& out) {
@@ -822,31 +844,18 @@ void writePlanningPlotData(const TradeStudyResult& result, std::ostream& out) {
       hi = std::max(hi, r.resolution);
     }
   }
-  std::vector<std::string> curves;
-  for (const PlanRow& r : result.planning) {
-    const std::string name =
-        r.planner + " " + r.checker + (r.rounding.empty() ? "" : " " + r.rounding);
-    if (std::find(curves.begin(), curves.end(), name) == curves.end()) curves.push_back(name);
-  }
-  out << std::setprecision(6);
-  bool first = true;
-  for (const std::string& curve : curves) {
-    if (!first) out << "\n\n";
-    first = false;
-    out << '"' << curve << "\" resolution_cm median_time_s solved\n";
-    for (const PlanRow& r : result.planning) {
-      if (r.planner + " " + r.checker + (r.rounding.empty() ? "" : " " + r.rounding) != curve) {
-        continue;
-      }
-      if (r.resolution > 0) {
-        out << 100 * r.resolution << ' ' << r.median_time << ' ' << r.solved << '\n';
-      } else if (hi > 0) {  // the exact checker: a flat line across the range
-        out << 100 * lo << ' ' << r.median_time << ' ' << r.solved << '\n'
-            << 100 * hi << ' ' << r.median_time << ' ' << r.solved << '\n';
-      }
-    }
-  }
-  out << '\n';
+  writeCurves(
+      result.planning, "resolution_cm median_time_s solved",
+      [](const PlanRow& r) { return withRounding(r.planner + " " + r.checker, r.rounding); },
+      [&](const PlanRow& r) {
+        if (r.resolution > 0) {
+          out << 100 * r.resolution << ' ' << r.median_time << ' ' << r.solved << '\n';
+        } else if (hi > 0) {  // the exact checker: a flat line across the range
+          out << 100 * lo << ' ' << r.median_time << ' ' << r.solved << '\n'
+              << 100 * hi << ' ' << r.median_time << ' ' << r.solved << '\n';
+        }
+      },
+      out);
 }
 
 }  // namespace octomotion
