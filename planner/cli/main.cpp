@@ -36,6 +36,9 @@ options:
   --checker octree|octree-fused|fcl|fcl-octomap
   --package-path DIR         extra package:// search path (repeatable)
   --max-surface-voxels N     fail early when a tree would need more voxels (default 2e8)
+  --self-link-resolution METRES
+                             finer link trees for self-collision pairs only (fewer false
+                             positives of near self pairs; docs/trade-off.md)
   --interpolation METRES     plan: spacing of the written path's states (default: OMPL's)
   --verbose                  OMPL's log messages on stderr
 )";

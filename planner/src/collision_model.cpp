@@ -102,7 +102,71 @@ void guardTreeSizes(const RobotModel& robot, const std::vector<Eigen::AlignedBox
   }
 }
 
+// Clearance spheres of a link: they circumscribe the level-kSphereLevel ancestors of its black
+// leaves.
+std::vector<Eigen::Vector4d> clearanceSpheres(const Octree& source) {
+  const WorldGrid& grid = source.grid();
+  const int level = std::min(kSphereLevel, grid.depth());
+  std::vector<Cube> cells;
+  source.forEachBlackLeaf([&](const Cube& c) {
+    if (c.level >= level) {
+      cells.push_back(c);
+    } else {
+      const std::uint32_t mask = ~((std::uint32_t{1} << level) - 1);
+      const Cube parent{level, {c.origin.x & mask, c.origin.y & mask, c.origin.z & mask}};
+      if (cells.empty() || !(cells.back() == parent)) cells.push_back(parent);
+    }
+  });
+  std::sort(cells.begin(), cells.end(), [](const Cube& a, const Cube& c) {
+    return std::tie(a.level, a.origin.x, a.origin.y, a.origin.z) <
+           std::tie(c.level, c.origin.x, c.origin.y, c.origin.z);
+  });
+  cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
+  std::vector<Eigen::Vector4d> spheres;
+  spheres.reserve(cells.size());
+  for (const Cube& c : cells) {
+    const Eigen::Vector3d cmin = grid.cubeMin(c), cmax = grid.cubeMax(c);
+    Eigen::Vector4d sphere;
+    sphere.head<3>() = (cmin + cmax) / 2;
+    sphere[3] = (cmax - cmin).norm() / 2;
+    spheres.push_back(sphere);
+  }
+  return spheres;
+}
+
 }  // namespace
+
+// A link's collision elements voxelized in its frame at `resolution` (box_L: their extent).
+OctreeCollisionModel::LinkVoxels OctreeCollisionModel::voxelizeLink(
+    const Link& link, const std::vector<const TriangleMesh*>& element_mesh,
+    Eigen::AlignedBox3d box_L, double resolution, const CollisionModelOptions& options) {
+  // One voxel of margin so conservative voxels on the boundary stay inside the universe.
+  box_L.extend(box_L.min() - Eigen::Vector3d::Constant(resolution));
+  box_L.extend(box_L.max() + Eigen::Vector3d::Constant(resolution));
+  const WorldGrid grid = fitGrid(box_L, resolution);
+  Octree source(grid);
+  for (std::size_t k = 0; k < link.collision.size(); ++k) {
+    const CollisionElement& e = link.collision[k];
+    const Octree part =
+        element_mesh[k]
+            ? voxelizeMesh(grid, *element_mesh[k], e.X_LE, options.rounding, options.warnings)
+            : voxelize(grid, std::get<Primitive>(e.geometry), e.X_LE, options.rounding);
+    source = unite(source, part);
+  }
+  LinkVoxels v;
+  v.source_diagonal = std::sqrt(3.0) * grid.voxelSize();
+  // Bounding sphere of the black voxels (centre: middle of their box).
+  if (const auto b = source.bounds()) {
+    const Eigen::Vector3d lo = grid.cubeMin(Cube{0, b->min});
+    const Eigen::Vector3d hi = grid.cubeMax(Cube{0, b->max});
+    v.center_L = (lo + hi) / 2;
+    v.half_L = (hi - lo) / 2;
+    v.radius = (hi - lo).norm() / 2;
+  }
+  v.source = std::move(source);
+  v.movable = std::make_unique<const MovableSource>(v.source);
+  return v;
+}
 
 const char* selfBroadPhaseName(SelfBroadPhase strategy) {
   switch (strategy) {
@@ -139,6 +203,10 @@ OctreeCollisionModel::OctreeCollisionModel(RobotModel robot, const EnvironmentGe
   if (!(std::isfinite(link_res) && link_res > 0)) {
     throw InvalidArgument("link resolution must be finite and > 0");
   }
+  const double self_res = options.self_link_resolution.value_or(link_res);
+  if (!(std::isfinite(self_res) && self_res > 0)) {
+    throw InvalidArgument("self-collision link resolution must be finite and > 0");
+  }
   if (options.self_broad_phase_leaf_capacity < 1) {
     throw InvalidArgument("self_broad_phase_leaf_capacity must be >= 1");
   }
@@ -146,6 +214,7 @@ OctreeCollisionModel::OctreeCollisionModel(RobotModel robot, const EnvironmentGe
     throw InvalidArgument("a free-flying robot needs base_position_bounds (the SE(3) bounds)");
   }
   report_.link_resolution = link_res;
+  report_.self_link_resolution = self_res;
 
   // 1. Each link's geometry in its own frame (meshes loaded once), and its extent.
   detail::CollisionMeshes meshes(options.keep_mesh_root_transform, options.center_mesh_vertices);
@@ -176,7 +245,7 @@ OctreeCollisionModel::OctreeCollisionModel(RobotModel robot, const EnvironmentGe
           std::max(geometry_reach[static_cast<std::size_t>(i)],
                    box_L.corner(static_cast<Eigen::AlignedBox3d::CornerType>(c)).norm());
     }
-    geometry_reach[static_cast<std::size_t>(i)] += std::sqrt(3.0) * link_res;
+    geometry_reach[static_cast<std::size_t>(i)] += std::sqrt(3.0) * std::max(link_res, self_res);
   }
 
   // 2. What the robot can reach: bound each link's distance from the base origin along its
@@ -226,73 +295,36 @@ OctreeCollisionModel::OctreeCollisionModel(RobotModel robot, const EnvironmentGe
   }
   const WorldGrid grid = fitGrid(region, options.resolution);
   report_.grid = grid;
-  guardTreeSizes(robot_, boxes_L, link_res, environment, region, options);
+  guardTreeSizes(robot_, boxes_L, std::min(link_res, self_res), environment, region, options);
 
-  // 4. Each link's source tree, in its own frame, at the link resolution.
+  // 4. Each link's source tree, in its own frame, at the link resolution (and a second one at
+  // the self-collision resolution when that differs).
+  std::vector<bool> in_pair(n, false);
+  for (const auto& [a, b] : robot_.checkedPairs()) {
+    in_pair[static_cast<std::size_t>(a)] = in_pair[static_cast<std::size_t>(b)] = true;
+  }
   std::vector<LinkTree> trees(n);
   for (int i = 0; i < n_links; ++i) {
     const Link& link = robot_.link(i);
     LinkReport& lr = report_.links[static_cast<std::size_t>(i)];
     if (!link.hasCollision()) continue;
     const auto t0 = Clock::now();
-    Eigen::AlignedBox3d box_L = boxes_L[static_cast<std::size_t>(i)];
-    const std::vector<const TriangleMesh*>& element_mesh =
-        element_meshes[static_cast<std::size_t>(i)];
-    // One voxel of margin so conservative voxels on the boundary stay inside the universe.
-    box_L.extend(box_L.min() - Eigen::Vector3d::Constant(link_res));
-    box_L.extend(box_L.max() + Eigen::Vector3d::Constant(link_res));
-    const WorldGrid source_grid = fitGrid(box_L, link_res);
-    Octree source(source_grid);
-    for (std::size_t k = 0; k < link.collision.size(); ++k) {
-      const CollisionElement& e = link.collision[k];
-      const Octree part = element_mesh[k] ? voxelizeMesh(source_grid, *element_mesh[k], e.X_LE,
-                                                         options.rounding, options.warnings)
-                                          : voxelize(source_grid, std::get<Primitive>(e.geometry),
-                                                     e.X_LE, options.rounding);
-      source = unite(source, part);
-    }
-    LinkTree& lt = trees[static_cast<std::size_t>(i)];
+    const auto s = static_cast<std::size_t>(i);
+    LinkTree& lt = trees[s];
     lt.link = i;
-    lt.source_diagonal = std::sqrt(3.0) * source_grid.voxelSize();
-    // Bounding sphere of the black voxels (centre: middle of their box).
-    if (const auto b = source.bounds()) {
-      const Eigen::Vector3d lo = source_grid.cubeMin(Cube{0, b->min});
-      const Eigen::Vector3d hi = source_grid.cubeMax(Cube{0, b->max});
-      lt.center_L = (lo + hi) / 2;
-      lt.half_L = (hi - lo) / 2;
-      lt.radius = (hi - lo).norm() / 2;
-      // Clearance spheres: the level-kSphereLevel ancestors of the black leaves.
-      const int level = std::min(kSphereLevel, source_grid.depth());
-      std::vector<Cube> cells;
-      source.forEachBlackLeaf([&](const Cube& c) {
-        if (c.level >= level) {
-          cells.push_back(c);
-        } else {
-          const std::uint32_t mask = ~((std::uint32_t{1} << level) - 1);
-          const Cube parent{level, {c.origin.x & mask, c.origin.y & mask, c.origin.z & mask}};
-          if (cells.empty() || !(cells.back() == parent)) cells.push_back(parent);
-        }
-      });
-      std::sort(cells.begin(), cells.end(), [](const Cube& a, const Cube& c) {
-        return std::tie(a.level, a.origin.x, a.origin.y, a.origin.z) <
-               std::tie(c.level, c.origin.x, c.origin.y, c.origin.z);
-      });
-      cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
-      for (const Cube& c : cells) {
-        const Eigen::Vector3d cmin = source_grid.cubeMin(c), cmax = source_grid.cubeMax(c);
-        Eigen::Vector4d s;
-        s.head<3>() = (cmin + cmax) / 2;
-        s[3] = (cmax - cmin).norm() / 2;
-        lt.spheres_L.push_back(s);
-      }
+    lt.voxels = voxelizeLink(link, element_meshes[s], boxes_L[s], link_res, options);
+    if (self_res != link_res && in_pair[s]) {
+      lt.self_voxels = std::make_unique<const LinkVoxels>(
+          voxelizeLink(link, element_meshes[s], boxes_L[s], self_res, options));
+      lr.self_source_bytes = lt.self_voxels->source.bytes();
     }
-    lt.source = std::move(source);
-    lt.movable = std::make_unique<const MovableSource>(lt.source);
-    lr.source_internal_nodes = lt.source.internalNodeCount();
-    lr.source_black_leaves = lt.source.blackLeafCount();
-    lr.source_bytes = lt.source.bytes();
-    lr.source_depth = source_grid.depth();
-    lr.radius = lt.radius;
+    const Octree& source = lt.voxels.source;
+    lt.spheres_L = clearanceSpheres(source);
+    lr.source_internal_nodes = source.internalNodeCount();
+    lr.source_black_leaves = source.blackLeafCount();
+    lr.source_bytes = source.bytes();
+    lr.source_depth = source.grid().depth();
+    lr.radius = lt.voxels.radius;
     lr.build_seconds = secondsSince(t0);
   }
 
@@ -349,19 +381,15 @@ OctreeCollisionModel::OctreeCollisionModel(RobotModel robot, const EnvironmentGe
   }
 
   // 6. Keep the links that can touch something: the environment, or another link.
-  std::vector<bool> in_pair(static_cast<std::size_t>(n_links), false);
-  for (const auto& [a, b] : robot_.checkedPairs()) {
-    in_pair[static_cast<std::size_t>(a)] = in_pair[static_cast<std::size_t>(b)] = true;
-  }
   link_slot_.assign(static_cast<std::size_t>(n_links), -1);
   for (int i = 0; i < n_links; ++i) {
     const auto s = static_cast<std::size_t>(i);
     LinkTree& lt = trees[s];
-    if (lt.link < 0 || lt.source.empty()) continue;
+    if (lt.link < 0 || (lt.voxels.source.empty() && lt.forSelf().source.empty())) continue;
     const Eigen::AlignedBox3d link_box(base_region.min().array() - link_reach[s],
                                        base_region.max().array() + link_reach[s]);
-    lt.touches_environment =
-        !environment_.empty() && !link_box.intersection(environment_box_W_).isEmpty();
+    lt.touches_environment = !environment_.empty() && !lt.voxels.source.empty() &&
+                             !link_box.intersection(environment_box_W_).isEmpty();
     if (!lt.touches_environment && !in_pair[s]) continue;
     link_slot_[s] = static_cast<int>(links_.size());
     report_.links[s].modelled = true;
@@ -395,7 +423,7 @@ OctreeCollisionModel::OctreeCollisionModel(RobotModel robot, const EnvironmentGe
   // inside it (a box leaving it would only cost a re-root, never a wrong answer).
   double max_radius = 0;
   for (const int slot : self_links_) {
-    max_radius = std::max(max_radius, links_[static_cast<std::size_t>(slot)].radius);
+    max_radius = std::max(max_radius, links_[static_cast<std::size_t>(slot)].forSelf().radius);
   }
   self_root_box_W_ = Eigen::AlignedBox3d(report_.reach_W.min().array() - max_radius,
                                          report_.reach_W.max().array() + max_radius);
@@ -444,8 +472,9 @@ bool OctreeCollisionModel::linkHitsEnvironment(const LinkTree& lt, const Eigen::
   // Cheapest first: the link's bounding sphere against the environment's box (or its objects'
   // boxes). Placed on the environment grid, the link's voxels reach up to one voxel diagonal
   // beyond the sphere (a target voxel is black when it overlaps a moved source voxel).
-  const Eigen::Vector3d c_W = X_WL * lt.center_L;
-  const double reach = lt.radius + std::sqrt(3.0) * environment_.grid().voxelSize();
+  const LinkVoxels& v = lt.voxels;
+  const Eigen::Vector3d c_W = X_WL * v.center_L;
+  const double reach = v.radius + std::sqrt(3.0) * environment_.grid().voxelSize();
   if (distanceToBox(c_W, environment_box_W_) > reach) return false;
   // Then the box of the link's black voxels, oriented with the link: a link voxel can only meet
   // an environment voxel inside the environment's (or an object's) box. The margin, a millionth
@@ -454,11 +483,11 @@ bool OctreeCollisionModel::linkHitsEnvironment(const LinkTree& lt, const Eigen::
   const Eigen::Matrix3d& R_WL = X_WL.linear();
   auto boxNear = [&](const Eigen::AlignedBox3d& box) {
     return distanceToBox(c_W, box) <= reach &&
-           boxesOverlap(box.center(), box.sizes() / 2, R_WL, c_W, lt.half_L, margin);
+           boxesOverlap(box.center(), box.sizes() / 2, R_WL, c_W, v.half_L, margin);
   };
   if (object_boxes_W_.empty()) {
     if (!boxesOverlap(environment_box_W_.center(), environment_box_W_.sizes() / 2, R_WL, c_W,
-                      lt.half_L, margin)) {
+                      v.half_L, margin)) {
       return false;
     }
   } else {
@@ -472,14 +501,13 @@ bool OctreeCollisionModel::linkHitsEnvironment(const LinkTree& lt, const Eigen::
     if (!near) return false;
   }
   if (path == CheckerPath::kFused) {
-    return collides(*lt.movable, X_WL, environment_, options_.rounding, fused);
+    return collides(*v.movable, X_WL, environment_, options_.rounding, fused);
   }
-  return intersects(moveTree(lt.source, X_WL, environment_.grid(), options_.rounding),
-                    environment_);
+  return intersects(moveTree(v.source, X_WL, environment_.grid(), options_.rounding), environment_);
 }
 
-bool OctreeCollisionModel::linksHit(const LinkTree& a, const Eigen::Isometry3d& X_WA,
-                                    const LinkTree& b, const Eigen::Isometry3d& X_WB,
+bool OctreeCollisionModel::linksHit(const LinkVoxels& a, const Eigen::Isometry3d& X_WA,
+                                    const LinkVoxels& b, const Eigen::Isometry3d& X_WB,
                                     const Eigen::Vector3d& cb_W, CheckerPath path,
                                     CollisionScratch& fused) const {
   // B's source tree placed in A's frame, tested against A's source tree. A voxel of A that a
@@ -503,7 +531,7 @@ bool OctreeCollisionModel::linksHit(const LinkTree& a, const Eigen::Isometry3d& 
 void OctreeCollisionModel::placeCentres(CheckScratch& scratch) const {
   scratch.centres_W.resize(links_.size());
   for (std::size_t i = 0; i < links_.size(); ++i) {
-    scratch.centres_W[i] = scratch.robot.linkPose(links_[i].link) * links_[i].center_L;
+    scratch.centres_W[i] = scratch.robot.linkPose(links_[i].link) * links_[i].forSelf().center_L;
   }
 }
 
@@ -539,9 +567,9 @@ bool OctreeCollisionModel::selfBroadPhaseInCollision(CheckerPath path,
   placeCentres(scratch);
   for (std::size_t i = 0; i < self_links_.size(); ++i) {
     const auto slot = static_cast<std::size_t>(self_links_[i]);
-    const LinkTree& lt = links_[slot];
+    const LinkVoxels& v = links_[slot].forSelf();
     const Eigen::Vector3d& c = scratch.centres_W[slot];
-    const double r = (lt.radius + lt.source_diagonal) * (1 + 1e-9) + 1e-9;
+    const double r = (v.radius + v.source_diagonal) * (1 + 1e-9) + 1e-9;
     const Eigen::Vector3d half = Eigen::Vector3d::Constant(r);
     tree.move(static_cast<std::uint32_t>(i), {c - half, c + half});
   }
@@ -551,11 +579,12 @@ bool OctreeCollisionModel::selfBroadPhaseInCollision(CheckerPath path,
     if (hit || !self_checked_[a * m + b]) return;
     const auto sa = static_cast<std::size_t>(self_links_[a]);
     const auto sb = static_cast<std::size_t>(self_links_[b]);
-    const LinkTree& la = links_[sa];
-    const LinkTree& lb = links_[sb];
-    hit = spheresMeet(la, scratch.centres_W[sa], lb, scratch.centres_W[sb]) &&
-          linksHit(la, scratch.robot.linkPose(la.link), lb, scratch.robot.linkPose(lb.link),
-                   scratch.centres_W[sb], path, scratch.fused);
+    const LinkVoxels& va = links_[sa].forSelf();
+    const LinkVoxels& vb = links_[sb].forSelf();
+    hit = spheresMeet(va, scratch.centres_W[sa], vb, scratch.centres_W[sb]) &&
+          linksHit(va, scratch.robot.linkPose(links_[sa].link), vb,
+                   scratch.robot.linkPose(links_[sb].link), scratch.centres_W[sb], path,
+                   scratch.fused);
   });
   return hit;
 }
@@ -565,11 +594,11 @@ bool OctreeCollisionModel::selfPairsInCollision(CheckerPath path, CheckScratch& 
   const std::vector<Eigen::Vector3d>& c_W = scratch.centres_W;
   for (const auto& [sa, sb] : pairs_) {
     const auto ia = static_cast<std::size_t>(sa), ib = static_cast<std::size_t>(sb);
-    const LinkTree& a = links_[ia];
-    const LinkTree& b = links_[ib];
+    const LinkVoxels& a = links_[ia].forSelf();
+    const LinkVoxels& b = links_[ib].forSelf();
     if (spheresMeet(a, c_W[ia], b, c_W[ib]) &&
-        linksHit(a, scratch.robot.linkPose(a.link), b, scratch.robot.linkPose(b.link), c_W[ib],
-                 path, scratch.fused)) {
+        linksHit(a, scratch.robot.linkPose(links_[ia].link), b,
+                 scratch.robot.linkPose(links_[ib].link), c_W[ib], path, scratch.fused)) {
       return true;
     }
   }
@@ -645,7 +674,11 @@ std::string CollisionModelReport::toString() const {
     out << "  " << o.name << ": " << o.black_leaves << " black leaves, " << o.internal_nodes
         << " internal nodes, " << o.build_seconds << " s\n";
   }
-  out << "links (source voxels " << link_resolution << " m):\n";
+  out << "links (source voxels " << link_resolution << " m";
+  if (self_link_resolution != link_resolution) {
+    out << "; self-collision trees " << self_link_resolution << " m";
+  }
+  out << "):\n";
   for (const LinkReport& l : links) {
     out << "  " << l.name << ": ";
     if (!l.modelled) {
@@ -654,7 +687,9 @@ std::string CollisionModelReport::toString() const {
     }
     out << l.source_internal_nodes << " internal nodes, " << l.source_black_leaves
         << " black leaves, " << l.source_bytes << " bytes, depth " << l.source_depth << ", radius "
-        << l.radius << " m, " << l.build_seconds << " s\n";
+        << l.radius << " m, " << l.build_seconds << " s";
+    if (l.self_source_bytes > 0) out << "; self-collision tree " << l.self_source_bytes << " bytes";
+    out << "\n";
   }
   out << "environment pre-test: "
       << (environment_pre_test == EnvironmentPreTest::kObjectBoxes

@@ -129,6 +129,9 @@ PlanningScene loadPlanningScene(const std::string& scene_path, const SceneOverri
   if (overrides.time) spec.problem.time = *overrides.time;
   if (overrides.seed) spec.problem.seed = *overrides.seed;
   if (overrides.max_surface_voxels) spec.octree.max_surface_voxels = *overrides.max_surface_voxels;
+  if (overrides.self_link_resolution) {
+    spec.octree.self_link_resolution = *overrides.self_link_resolution;
+  }
   // Seed before OMPL creates any random number generator.
   if (spec.problem.seed) ompl::RNG::setSeed(*spec.problem.seed);
 
@@ -189,6 +192,7 @@ PlanningScene loadPlanningScene(const std::string& scene_path, const SceneOverri
   CollisionModelOptions options;
   options.resolution = *spec.octree.resolution;
   options.link_resolution = spec.octree.link_resolution;
+  options.self_link_resolution = spec.octree.self_link_resolution;
   options.rounding = spec.octree.rounding;
   if (spec.octree.max_surface_voxels) options.max_surface_voxels = *spec.octree.max_surface_voxels;
   options.base_position_bounds = spec.problem.bounds;

@@ -246,7 +246,8 @@ void parseEnvironment(const YamlReader& r, const YAML::Node& node, SceneSpec& sc
 
 void parseOctree(const YamlReader& r, const YAML::Node& node, SceneSpec& scene) {
   r.allowOnly(node, "octree",
-              {"resolution", "link_resolution", "rounding", "checker", "max_surface_voxels"});
+              {"resolution", "link_resolution", "self_link_resolution", "rounding", "checker",
+               "max_surface_voxels"});
   OctreeSettings& s = scene.octree;
   if (const YAML::Node res = node["resolution"]) {
     if (!(res.IsScalar() && res.Scalar() == "auto")) {
@@ -255,6 +256,10 @@ void parseOctree(const YamlReader& r, const YAML::Node& node, SceneSpec& scene) 
   }
   if (node["link_resolution"]) {
     s.link_resolution = r.positive(node["link_resolution"], "octree.link_resolution");
+  }
+  if (node["self_link_resolution"]) {
+    s.self_link_resolution =
+        r.positive(node["self_link_resolution"], "octree.self_link_resolution");
   }
   if (node["max_surface_voxels"]) {
     s.max_surface_voxels = r.positive(node["max_surface_voxels"], "octree.max_surface_voxels");

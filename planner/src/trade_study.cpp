@@ -438,6 +438,7 @@ TradeStudyResult runTradeStudy(const TradeStudyOptions& options) {
   result.free_flying = free_flying;
   result.scene_resolution = scene.resolution;
   result.link_resolution_ratio = options.link_resolution_ratio;
+  result.self_link_resolution_ratio = options.self_link_resolution_ratio;
   std::vector<double> resolutions = options.resolutions.empty()
                                         ? defaultResolutions(free_flying, scene.resolution)
                                         : options.resolutions;
@@ -524,6 +525,9 @@ TradeStudyResult runTradeStudy(const TradeStudyOptions& options) {
       mo.resolution = resolution;
       if (options.link_resolution_ratio != 1.0) {
         mo.link_resolution = resolution * options.link_resolution_ratio;
+      }
+      if (options.self_link_resolution_ratio != options.link_resolution_ratio) {
+        mo.self_link_resolution = resolution * options.self_link_resolution_ratio;
       }
       mo.rounding = rounding;
       mo.base_position_bounds = scene.bounds;
@@ -671,6 +675,10 @@ void writeMarkdown(const TradeStudyResult& result, std::ostream& out) {
       << "included; FP % of free states, FN % of colliding states.";
   if (result.link_resolution_ratio != 1.0) {
     out << " Octree link source trees at " << result.link_resolution_ratio
+        << " x the environment resolution.";
+  }
+  if (result.self_link_resolution_ratio != result.link_resolution_ratio) {
+    out << " Self-collision trees at " << result.self_link_resolution_ratio
         << " x the environment resolution.";
   }
   out << "\n\n";

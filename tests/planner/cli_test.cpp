@@ -13,6 +13,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
+using ::testing::Not;
 
 struct CliRun {
   int status;
@@ -54,6 +55,11 @@ TEST(Cli, InfoDescribesWhatIsModelled) {
                                "finger_joint1"));
   EXPECT_THAT(r.out, HasSubstr("hand: "));
   EXPECT_THAT(r.out, HasSubstr("self-collision pairs checked: "));
+  EXPECT_THAT(r.out, Not(HasSubstr("self-collision trees")));
+  const CliRun fine =
+      run("info " + scene("bookshelf.yaml") + " --resolution 0.02 --self-link-resolution 0.005");
+  ASSERT_EQ(fine.status, 0) << fine.err;
+  EXPECT_THAT(fine.out, HasSubstr("self-collision trees 0.005 m"));
 }
 
 TEST(Cli, CheckReadsColumnsByName) {
@@ -117,6 +123,7 @@ TEST(Cli, BadInputIsOneLineAndNonZero) {
         "info " + scene("bookshelf.yaml") + " --rounding sideways",
         "info " + scene("bookshelf.yaml") + " --resolution -1",
         "info " + scene("bookshelf.yaml") + " --checker bullet",
+        "info " + scene("bookshelf.yaml") + " --self-link-resolution 0",
         "plan " + scene("bookshelf.yaml") + " --time", "check " + scene("bookshelf.yaml")}) {
     const CliRun r = run(args);
     EXPECT_NE(r.status, 0) << args;

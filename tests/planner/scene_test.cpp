@@ -31,7 +31,8 @@ environment:
   - mesh: {file: meshes/table.stl, scale: [0.001, 0.001, 0.001]}
   - pointcloud: {file: scan.pcd}
   - octomap: {file: /maps/room.bt}
-octree: {resolution: 0.01, link_resolution: 0.02, rounding: center, checker: octree}
+octree: {resolution: 0.01, link_resolution: 0.02, self_link_resolution: 0.004, rounding: center,
+         checker: octree}
 problem:
   start: [0, 0.1, 0, -1.2, 0, 1.0, 0, 0.02]
   goal: [0.5, 0.3, 0, -1.0, 0, 1.2, 0, 0.02]
@@ -71,6 +72,7 @@ TEST(Scene, ParsesEveryField) {
   ASSERT_TRUE(s.octree.resolution.has_value());
   EXPECT_DOUBLE_EQ(*s.octree.resolution, 0.01);
   EXPECT_DOUBLE_EQ(*s.octree.link_resolution, 0.02);
+  EXPECT_DOUBLE_EQ(*s.octree.self_link_resolution, 0.004);
   EXPECT_EQ(s.octree.rounding, Rounding::kCenter);
   EXPECT_EQ(s.octree.checker, "octree");
   ASSERT_TRUE(s.problem.start && s.problem.goal);

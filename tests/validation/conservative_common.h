@@ -5,7 +5,8 @@
 //    pair) the octree checker finds in collision too, for the same reason;
 //  - free space is eaten by a bounded margin only: a state the octree checker rejects but FCL
 //    does not lies within delta_env = sqrt(3) (r_e + r_l) of the environment (FCL distance), or
-//    within delta_self = 2 sqrt(3) r_l between the links of a checked pair.
+//    within delta_self = 2 sqrt(3) r_s between the links of a checked pair (r_s: the self
+//    pairs' link voxels, r_l unless self_link_resolution sets finer ones).
 #pragma once
 
 #include <cmath>
@@ -31,8 +32,10 @@ inline std::string describe(const Sample& s) {
 
 // Checks states [begin, end) of the scene's kStates uniform states (kSeed) with one checker path.
 inline void checkConservative(const std::string& scene_file, const std::string& checker,
-                              std::size_t begin, std::size_t end) {
-  const PlanningScene scene = loadValidationScene(scene_file, Rounding::kConservative, checker);
+                              std::size_t begin, std::size_t end,
+                              std::optional<double> self_link_resolution = {}) {
+  const PlanningScene scene =
+      loadValidationScene(scene_file, Rounding::kConservative, checker, self_link_resolution);
   const OctreeCollisionModel& octree = *scene.model;
   const std::shared_ptr<const FclCollisionModel> reference = exactReference(scene);
   const FclCollisionModel& fcl = *reference;
@@ -41,7 +44,7 @@ inline void checkConservative(const std::string& scene_file, const std::string& 
   const Resolutions r = resolutionsOf(octree);
   // docs/validation.md §2: a voxel of each tree lies between the two surfaces.
   const double delta_env = std::sqrt(3.0) * (r.environment + r.link) + kTieSlack;
-  const double delta_self = 2 * std::sqrt(3.0) * r.link + kTieSlack;
+  const double delta_self = 2 * std::sqrt(3.0) * r.self_link + kTieSlack;
 
   CheckScratch scratch = octree.makeScratch();
   auto exact = fcl.makeScratch();
@@ -97,11 +100,12 @@ inline void checkConservative(const std::string& scene_file, const std::string& 
     }
   }
   std::cout << "[ rates    ] " << sceneLabel(scene_file) << " " << checker << " states " << begin
-            << ".." << end << " r_e " << r.environment << " r_l " << r.link << ": FCL env "
-            << fcl_env << " self " << fcl_self << ", octree env " << octree_env << " self "
-            << octree_self << " of " << (end - begin) << "; false positives env " << extra_env
-            << " (worst FCL distance " << worst_env << " <= delta " << delta_env << ") self "
-            << extra_self << " (worst " << worst_self << " <= delta " << delta_self << ")\n";
+            << ".." << end << " r_e " << r.environment << " r_l " << r.link << " r_s "
+            << r.self_link << ": FCL env " << fcl_env << " self " << fcl_self << ", octree env "
+            << octree_env << " self " << octree_self << " of " << (end - begin)
+            << "; false positives env " << extra_env << " (worst FCL distance " << worst_env
+            << " <= delta " << delta_env << ") self " << extra_self << " (worst " << worst_self
+            << " <= delta " << delta_self << ")\n";
   EXPECT_EQ(missed_env, 0u) << first_failure;
   EXPECT_EQ(missed_self, 0u) << first_failure;
   EXPECT_EQ(beyond_env, 0u) << first_failure;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
@@ -47,11 +48,13 @@ inline std::string testName(const std::string& path) {
 // Arms at 2 cm (fast to build, and coarse enough that the margins matter); rigid bodies at
 // their scene's resolution (auto when it has none), since they are small next to 2 cm.
 inline PlanningScene loadValidationScene(const std::string& path, Rounding rounding,
-                                         const std::string& checker = "octree-fused") {
+                                         const std::string& checker = "octree-fused",
+                                         std::optional<double> self_link_resolution = {}) {
   ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
   SceneOverrides overrides;
   overrides.rounding = rounding;
   overrides.checker = checker;
+  overrides.self_link_resolution = self_link_resolution;
   const SceneSpec spec = loadScene(path);
   bool arm = !spec.robot.urdf.empty();
   if (arm) {
@@ -137,9 +140,11 @@ inline std::shared_ptr<const FclCollisionModel> exactReference(const PlanningSce
 struct Resolutions {
   double environment;  // r_e
   double link;         // r_l
+  double self_link;    // r_s: the trees of the self pairs (r_l unless self_link_resolution)
 };
 inline Resolutions resolutionsOf(const OctreeCollisionModel& model) {
-  return {model.grid().voxelSize(), model.report().link_resolution};
+  return {model.grid().voxelSize(), model.report().link_resolution,
+          model.report().self_link_resolution};
 }
 
 // Slack for floating-point ties in the voxelizers and FCL's distance (1 um, far below a voxel).

@@ -27,6 +27,8 @@
 
 namespace octomotion {
 
+struct TriangleMesh;
+
 // (a) the mission's path: moveTree from the source tree, then the parallel traversal;
 // (b) the fused query: both at once, without materialising the moved tree.
 enum class CheckerPath { kMoveTree, kFused };
@@ -76,6 +78,9 @@ std::uint64_t nextModelId();
 struct CollisionModelOptions {
   double resolution = 0.01;               // environment voxel size (metres)
   std::optional<double> link_resolution;  // source-tree voxel size; default: resolution
+  // Source-tree voxel size for the self-collision pairs; default: link_resolution. Finer than
+  // link_resolution, each link keeps a second tree used only against the other links.
+  std::optional<double> self_link_resolution;
   Rounding rounding = Rounding::kConservative;
   // Fixed-base robots: the root link's pose. Free-flying robots: ignored.
   Eigen::Isometry3d X_WB = Eigen::Isometry3d::Identity();
@@ -102,6 +107,7 @@ struct LinkReport {
   std::size_t source_internal_nodes = 0;
   std::size_t source_black_leaves = 0;
   std::size_t source_bytes = 0;
+  std::size_t self_source_bytes = 0;  // the separate self-collision tree (0: none)
   int source_depth = 0;
   double radius = 0;  // bounding sphere of the source tree's black voxels (metres)
   double build_seconds = 0;
@@ -110,7 +116,8 @@ struct LinkReport {
 struct CollisionModelReport {
   WorldGrid grid{Eigen::Vector3d::Zero(), 1.0, 1};
   double link_resolution = 0;
-  Eigen::AlignedBox3d reach_W;  // what the robot can reach
+  double self_link_resolution = 0;  // equal to link_resolution unless set apart
+  Eigen::AlignedBox3d reach_W;      // what the robot can reach
   EnvironmentReport environment;
   std::vector<LinkReport> links;
   std::size_t self_pairs = 0;
@@ -182,37 +189,51 @@ class OctreeCollisionModel {
   std::vector<LinkSourceTree> linkSourceTrees() const {
     std::vector<LinkSourceTree> trees;
     trees.reserve(links_.size());
-    for (const LinkTree& lt : links_) trees.push_back({lt.link, &lt.source});
+    for (const LinkTree& lt : links_) trees.push_back({lt.link, &lt.voxels.source});
     return trees;
   }
 
  private:
-  struct LinkTree {
-    int link = -1;
-    Octree source{WorldGrid(Eigen::Vector3d::Zero(), 1.0, 1)};  // in the link frame L
-    std::unique_ptr<const MovableSource> movable;  // the source prepared for the fused query
-    Eigen::Vector3d center_L;                      // bounding sphere of the black voxels
+  // A link's black voxels at one resolution, in its own frame L, prepared for queries.
+  struct LinkVoxels {
+    Octree source{WorldGrid(Eigen::Vector3d::Zero(), 1.0, 1)};
+    std::unique_ptr<const MovableSource> movable;        // the source prepared for the fused query
+    Eigen::Vector3d center_L = Eigen::Vector3d::Zero();  // bounding sphere of the black voxels
     double radius = 0;
     Eigen::Vector3d half_L = Eigen::Vector3d::Zero();  // their box: centre center_L, half-sides
     double source_diagonal = 0;                        // of one source voxel (metres)
+  };
+  struct LinkTree {
+    int link = -1;
+    LinkVoxels voxels;  // tested against the environment (and the other links, unless below)
+    // At self_link_resolution when it differs from link_resolution: the self pairs' margin is
+    // set by the link voxels alone, so finer trees here remove self false positives without
+    // deepening the environment queries.
+    std::unique_ptr<const LinkVoxels> self_voxels;
+    const LinkVoxels& forSelf() const { return self_voxels ? *self_voxels : voxels; }
     bool touches_environment = true;         // false: cannot reach the modelled environment
     std::vector<Eigen::Vector4d> spheres_L;  // coarse cover of the black voxels (clearance)
   };
 
+  static LinkVoxels voxelizeLink(const Link& link,
+                                 const std::vector<const TriangleMesh*>& element_mesh,
+                                 Eigen::AlignedBox3d box_L, double resolution,
+                                 const CollisionModelOptions& options);
   bool linkHitsEnvironment(const LinkTree& lt, const Eigen::Isometry3d& X_WL, CheckerPath path,
                            CollisionScratch& fused) const;
   // The self-pair test in two stages, cheapest first. spheresMeet: the bounding spheres (centres
   // in W from placeCentres) are close enough for B's voxels placed on A's grid to reach A.
-  static bool spheresMeet(const LinkTree& a, const Eigen::Vector3d& ca_W, const LinkTree& b,
+  static bool spheresMeet(const LinkVoxels& a, const Eigen::Vector3d& ca_W, const LinkVoxels& b,
                           const Eigen::Vector3d& cb_W) {
     const double reach = a.radius + b.radius + a.source_diagonal;
     return (ca_W - cb_W).squaredNorm() <= reach * reach;
   }
   // linksHit, for pairs whose spheres meet: the oriented boxes, then the trees.
-  bool linksHit(const LinkTree& a, const Eigen::Isometry3d& X_WA, const LinkTree& b,
+  bool linksHit(const LinkVoxels& a, const Eigen::Isometry3d& X_WA, const LinkVoxels& b,
                 const Eigen::Isometry3d& X_WB, const Eigen::Vector3d& cb_W, CheckerPath path,
                 CollisionScratch& fused) const;
-  void placeCentres(CheckScratch& scratch) const;  // scratch.centres_W[slot], every modelled link
+  // scratch.centres_W[slot]: every modelled link's self-collision sphere centre.
+  void placeCentres(CheckScratch& scratch) const;
   bool selfPairsInCollision(CheckerPath path, CheckScratch& scratch) const;
   bool selfBroadPhaseInCollision(CheckerPath path, CheckScratch& scratch) const;
   broadphase::NObjectsOctree makeSelfBroadPhase() const;

@@ -32,7 +32,8 @@ struct SceneOverrides {
   std::optional<double> time;
   std::optional<std::uint64_t> seed;
   std::vector<std::string> package_paths;
-  std::optional<double> max_surface_voxels;  // > 0; the memory guard, see CollisionModelOptions
+  std::optional<double> max_surface_voxels;    // > 0; the memory guard, see CollisionModelOptions
+  std::optional<double> self_link_resolution;  // > 0; octree.self_link_resolution
 };
 
 // The resolution used when a scene says `auto` (or a .cfg says nothing): fixed-base arms 1 cm;

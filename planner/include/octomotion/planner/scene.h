@@ -43,6 +43,8 @@ inline constexpr const char* kCheckerNames[] = {"octree", "octree-fused", "fcl",
 struct OctreeSettings {
   std::optional<double> resolution;       // metres; empty = auto (derived from the scene)
   std::optional<double> link_resolution;  // coarser per-link source trees; empty = resolution
+  // Finer trees for the self-collision pairs only; empty = link_resolution.
+  std::optional<double> self_link_resolution;
   Rounding rounding = Rounding::kConservative;
   std::string checker = "octree-fused";  // one of kCheckerNames
   // Memory guard (CollisionModelOptions::max_surface_voxels); empty = the library default.
