@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <system_error>
 
+#include "octomotion/motion/sin_cos.h"
 #include "robot_model_builder.h"
 
 namespace octomotion {
@@ -267,8 +268,8 @@ void RobotModel::forwardKinematics(const double* q, std::size_t q_size, RobotDat
     } else if (step.axis_index >= 0) {
       // Right-multiplying by a rotation about e_k mixes columns a = k+1 and b = k+2 (mod 3).
       const double angle = step.axis_sign * value;
-      const double s = std::sin(angle);
-      const double c = std::cos(angle);
+      double s, c;
+      sinCos(angle, s, c);
       const Eigen::Index a = (step.axis_index + 1) % 3;
       const Eigen::Index b = (step.axis_index + 2) % 3;
       auto R = X_WC.linear();
