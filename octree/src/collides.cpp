@@ -73,7 +73,8 @@ class Query {
         margin_(motion_detail::rejectMargin(rounding)),
         scratch_(scratch),
         witness_(witness),
-        core_(src.coreLeaves()) {}
+        core_(src.coreLeaves()),
+        expand_factor_(src.expandFactor()) {}
 
   bool run() {
     if (env_root_ == Color::kWhite) return false;
@@ -137,11 +138,6 @@ class Query {
 
  private:
   static constexpr std::uint32_t kWhiteCell = 0xfffffffeu;
-  // A gray source piece is split into its children only when it is this many times larger
-  // than the environment cell: measured on a 26 cm link in a cluttered room, keeping the source
-  // whole until black cells are reached (then probeBelow descends it) beats eager splitting,
-  // whose cost is creating and testing many small pieces.
-  static constexpr double kExpandFactor = 8.0;
   static constexpr std::uint32_t kBlackCell = 0xffffffffu;
 
   // The environment node of an anchor cell, kBlackCell or kWhiteCell.
@@ -358,7 +354,7 @@ class Query {
   // by its children that reach it (the source side of the parallel descent).
   void pushRefined(const CollisionItem& it, const Cube& cell) {
     const double half = motion_detail::halfSide(cell.level);
-    if (it.leaf >= 0 || std::max(it.rs[0], std::max(it.rs[1], it.rs[2])) <= kExpandFactor * half) {
+    if (it.leaf >= 0 || std::max(it.rs[0], std::max(it.rs[1], it.rs[2])) <= expand_factor_ * half) {
       out_->push_back(it);
       return;
     }
@@ -447,13 +443,15 @@ class Query {
   CollisionScratch& scratch_;
   Cube* witness_;
   const std::vector<Cube>& core_;
+  double expand_factor_;
   std::vector<CollisionItem>* out_ = nullptr;
 };
 
 }  // namespace
 
-MovableSource::MovableSource(const Octree& source)
-    : grid_(source.grid()), root_(source.rootColor()) {
+MovableSource::MovableSource(const Octree& source, double expand_factor)
+    : grid_(source.grid()), root_(source.rootColor()), expand_factor_(expand_factor) {
+  if (!(expand_factor >= 1)) throw InvalidArgument("MovableSource: expand_factor must be >= 1");
   if (root_ == Color::kGray) {
     nodes_.resize(source.nodes().size());
     fillNode(source, nodes_, 0, grid_.universe());

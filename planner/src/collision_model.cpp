@@ -139,7 +139,8 @@ std::vector<Eigen::Vector4d> clearanceSpheres(const Octree& source) {
 // A link's collision elements voxelized in its frame at `resolution` (box_L: their extent).
 OctreeCollisionModel::LinkVoxels OctreeCollisionModel::voxelizeLink(
     const Link& link, const std::vector<const TriangleMesh*>& element_mesh,
-    Eigen::AlignedBox3d box_L, double resolution, const CollisionModelOptions& options) {
+    Eigen::AlignedBox3d box_L, double resolution, const CollisionModelOptions& options,
+    bool for_self_pairs) {
   // One voxel of margin so conservative voxels on the boundary stay inside the universe.
   box_L.extend(box_L.min() - Eigen::Vector3d::Constant(resolution));
   box_L.extend(box_L.max() + Eigen::Vector3d::Constant(resolution));
@@ -164,7 +165,11 @@ OctreeCollisionModel::LinkVoxels OctreeCollisionModel::voxelizeLink(
     v.radius = (hi - lo).norm() / 2;
   }
   v.source = std::move(source);
-  v.movable = std::make_unique<const MovableSource>(v.source);
+  // Self trees are only ever tested against other self trees of the same resolution.
+  const bool deep_pairs = for_self_pairs && grid.depth() >= MovableSource::kDeepPairLevels;
+  v.movable = std::make_unique<const MovableSource>(
+      v.source,
+      deep_pairs ? MovableSource::kExpandFactorDeepPairs : MovableSource::kExpandFactorDefault);
   return v;
 }
 
@@ -312,10 +317,10 @@ OctreeCollisionModel::OctreeCollisionModel(RobotModel robot, const EnvironmentGe
     const auto s = static_cast<std::size_t>(i);
     LinkTree& lt = trees[s];
     lt.link = i;
-    lt.voxels = voxelizeLink(link, element_meshes[s], boxes_L[s], link_res, options);
+    lt.voxels = voxelizeLink(link, element_meshes[s], boxes_L[s], link_res, options, false);
     if (self_res != link_res && in_pair[s]) {
       lt.self_voxels = std::make_unique<const LinkVoxels>(
-          voxelizeLink(link, element_meshes[s], boxes_L[s], self_res, options));
+          voxelizeLink(link, element_meshes[s], boxes_L[s], self_res, options, true));
       lr.self_source_bytes = lt.self_voxels->source.bytes();
     }
     const Octree& source = lt.voxels.source;

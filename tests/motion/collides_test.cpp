@@ -178,6 +178,49 @@ TEST(Collides, LinkMeshInClutter) {
   EXPECT_LT(hits, 2900);
 }
 
+// The expand factor (when a gray source piece is split) only changes the traversal's cost: every
+// factor must give moveTree + intersects' answer, against clutter and against another solid link
+// (the self-pair case kExpandFactorDeepPairs is for), with a source 6 levels deep.
+TEST(Collides, AnswerDoesNotDependOnExpandFactor) {
+  std::mt19937_64 rng(0xe8f);
+  const WorldGrid link_grid(Eigen::Vector3d::Constant(-0.16), 0.005, 6);
+  const Octree link = voxelizeMesh(link_grid, capsule(0.04, 0.18, 24, 6),
+                                   Eigen::Isometry3d::Identity(), Rounding::kConservative);
+  std::vector<std::unique_ptr<MovableSource>> prepared;
+  for (const double factor : {1.0, MovableSource::kExpandFactorDeepPairs,
+                              MovableSource::kExpandFactorDefault, 64.0, 1e9}) {
+    prepared.push_back(std::make_unique<MovableSource>(link, factor));
+    EXPECT_EQ(prepared.back()->expandFactor(), factor);
+  }
+  EXPECT_THROW(MovableSource(link, 0.5), InvalidArgument);
+  const WorldGrid grid(Eigen::Vector3d(-0.32, -0.32, 0.0), 0.01, 6);
+  const Octree clutter_env = clutter(grid, rng, 1);
+  const Octree other_link = voxelize(link_grid, Cylinder{0.05, 0.25}, Eigen::Isometry3d::Identity(),
+                                     Rounding::kConservative);
+  CollisionScratch scratch;
+  int hits = 0, compared = 0;
+  for (const Octree* target : {&clutter_env, &other_link}) {
+    const Eigen::Vector3d centre = test::gridCentre(target->grid());
+    const double spread = target == &clutter_env ? 0.3 : 0.12;
+    std::uniform_real_distribution<double> pos(-spread, spread);
+    for (int p = 0; p < 400; ++p) {
+      const Eigen::Isometry3d X = test::randomPoseAbout(
+          rng, Eigen::Vector3d::Zero(), centre + Eigen::Vector3d(pos(rng), pos(rng), pos(rng)));
+      for (Rounding mode : kModes) {
+        const bool expect = intersects(moveTree(link, X, target->grid(), mode), *target);
+        for (const auto& source : prepared) {
+          ASSERT_EQ(collides(*source, X, *target, mode, scratch), expect)
+              << "pose " << p << " factor " << source->expandFactor() << " " << toString(mode);
+        }
+        hits += expect;
+        ++compared;
+      }
+    }
+  }
+  EXPECT_GT(hits, compared / 10);
+  EXPECT_LT(hits, compared * 9 / 10);
+}
+
 TEST(Collides, ConvenienceFormAndSpecialTrees) {
   std::mt19937_64 rng(5);
   const WorldGrid grid(Eigen::Vector3d::Zero(), 0.05, 5);

@@ -218,7 +218,7 @@ class OctreeCollisionModel {
   static LinkVoxels voxelizeLink(const Link& link,
                                  const std::vector<const TriangleMesh*>& element_mesh,
                                  Eigen::AlignedBox3d box_L, double resolution,
-                                 const CollisionModelOptions& options);
+                                 const CollisionModelOptions& options, bool for_self_pairs);
   bool linkHitsEnvironment(const LinkTree& lt, const Eigen::Isometry3d& X_WL, CheckerPath path,
                            CollisionScratch& fused) const;
   // The self-pair test in two stages, cheapest first. spheresMeet: the bounding spheres (centres
