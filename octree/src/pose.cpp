@@ -13,9 +13,8 @@ double orthonormalityError(const Eigen::Matrix3d& R) {
   return (R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
 }
 
-}  // namespace
-
-void validatePose(const Eigen::Isometry3d& X, const char* what) {
+// Validates X (see validatePose) and returns max |R^T R - I|.
+double checkedOrthonormalityError(const Eigen::Isometry3d& X, const char* what) {
   const Eigen::Matrix3d R = X.linear();
   if (!R.allFinite() || !X.translation().allFinite()) {
     throw InvalidArgument(std::string(what) + ": pose has a NaN or infinite entry");
@@ -28,11 +27,26 @@ void validatePose(const Eigen::Isometry3d& X, const char* what) {
   if (!(R.determinant() > 0.0)) {
     throw InvalidArgument(std::string(what) + ": rotation is a reflection (det R < 0)");
   }
+  return err;
+}
+
+Eigen::Matrix3d snapped(const Eigen::Matrix3d& R, double orthonormality_error) {
+  if (orthonormality_error <= 1e-14) return R;
+  return Eigen::Quaterniond(R).normalized().toRotationMatrix();
+}
+
+}  // namespace
+
+void validatePose(const Eigen::Isometry3d& X, const char* what) {
+  checkedOrthonormalityError(X, what);
 }
 
 Eigen::Matrix3d snappedRotation(const Eigen::Matrix3d& R) {
-  if (orthonormalityError(R) <= 1e-14) return R;
-  return Eigen::Quaterniond(R).normalized().toRotationMatrix();
+  return snapped(R, orthonormalityError(R));
+}
+
+Eigen::Matrix3d validatedRotation(const Eigen::Isometry3d& X, const char* what) {
+  return snapped(X.linear(), checkedOrthonormalityError(X, what));
 }
 
 Eigen::Isometry3d poseFromQuaternion(const Eigen::Quaterniond& q, const Eigen::Vector3d& T) {

@@ -30,6 +30,10 @@ void validatePose(const Eigen::Isometry3d& X, const char* what = "pose");
 // rotation (re-normalised quaternion of R).
 Eigen::Matrix3d snappedRotation(const Eigen::Matrix3d& R);
 
+// validatePose then snappedRotation, sharing their R^T R (the per-query set-up of moveTree and
+// collides).
+Eigen::Matrix3d validatedRotation(const Eigen::Isometry3d& X, const char* what = "pose");
+
 // X from a possibly non-normalised quaternion (w, x, y, z) and a translation: the quaternion is
 // divided by its norm. Throws InvalidArgument when a coefficient or the translation is NaN/Inf or
 // the quaternion's norm is below 1e-12 (no direction to normalise).
