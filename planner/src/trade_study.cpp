@@ -371,7 +371,7 @@ PlanRow runPlanning(const StudyScene& scene, const PlanSetting& setting,
 
 std::size_t octreeBytes(const OctreeCollisionModel& model) {
   std::size_t bytes = model.report().environment.bytes;
-  for (const LinkReport& l : model.report().links) bytes += l.source_bytes;
+  for (const LinkReport& l : model.report().links) bytes += l.source_bytes + l.self_source_bytes;
   return bytes;
 }
 

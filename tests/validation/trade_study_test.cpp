@@ -143,5 +143,32 @@ TEST(TradeStudyTest, ConservativeSettingsHaveNoFalseNegatives) {
   EXPECT_NE(md.str().find("Targets for narrow_passage"), std::string::npos);
 }
 
+// An arm with finer self-collision trees: the setting is named in the markdown, counts their
+// memory, and keeps every conservative row free of false negatives; the finer self trees clear
+// self false positives of the same states.
+TEST(TradeStudyTest, FinerSelfTreesAreMeasuredAndCounted) {
+  TradeStudyOptions options;
+  options.scene_path = std::string(OCTOMOTION_SOURCE_DIR) + "/robots/scenes/bookshelf.yaml";
+  options.states = 400;
+  options.resolutions = {0.02};
+  options.roundings = {Rounding::kConservative};
+  options.paths = {CheckerPath::kFused};
+  options.fcl_octomap = false;
+  options.runs = 0;
+  const TradeStudyResult same = runTradeStudy(options);
+  options.self_link_resolution_ratio = 0.25;
+  const TradeStudyResult finer = runTradeStudy(options);
+  ASSERT_EQ(same.checks.size(), 2u);
+  ASSERT_EQ(finer.checks.size(), 2u);
+  const CheckRow& a = same.checks[1];
+  const CheckRow& b = finer.checks[1];
+  EXPECT_EQ(b.false_negatives, 0u);
+  EXPECT_LT(b.false_positives, a.false_positives);
+  EXPECT_GT(b.memory_bytes, a.memory_bytes);  // the second trees are counted
+  std::ostringstream md;
+  writeMarkdown(finer, md);
+  EXPECT_NE(md.str().find("Self-collision trees at 0.25"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace octomotion
