@@ -400,6 +400,8 @@ OctreeCollisionModel::OctreeCollisionModel(RobotModel robot, const EnvironmentGe
     report_.links[s].modelled = true;
     links_.push_back(std::move(lt));
   }
+  // links_ is final: the self trees' addresses stay valid (moving the model moves the buffer).
+  for (const LinkTree& lt : links_) self_voxels_.push_back(&lt.forSelf());
   for (const auto& [a, b] : robot_.checkedPairs()) {
     const int sa = link_slot_[static_cast<std::size_t>(a)];
     const int sb = link_slot_[static_cast<std::size_t>(b)];
@@ -536,7 +538,7 @@ bool OctreeCollisionModel::linksHit(const LinkVoxels& a, const Eigen::Isometry3d
 void OctreeCollisionModel::placeCentres(CheckScratch& scratch) const {
   scratch.centres_W.resize(links_.size());
   for (std::size_t i = 0; i < links_.size(); ++i) {
-    scratch.centres_W[i] = scratch.robot.linkPose(links_[i].link) * links_[i].forSelf().center_L;
+    scratch.centres_W[i] = scratch.robot.linkPose(links_[i].link) * self_voxels_[i]->center_L;
   }
 }
 
@@ -572,7 +574,7 @@ bool OctreeCollisionModel::selfBroadPhaseInCollision(CheckerPath path,
   placeCentres(scratch);
   for (std::size_t i = 0; i < self_links_.size(); ++i) {
     const auto slot = static_cast<std::size_t>(self_links_[i]);
-    const LinkVoxels& v = links_[slot].forSelf();
+    const LinkVoxels& v = *self_voxels_[slot];
     const Eigen::Vector3d& c = scratch.centres_W[slot];
     const double r = (v.radius + v.source_diagonal) * (1 + 1e-9) + 1e-9;
     const Eigen::Vector3d half = Eigen::Vector3d::Constant(r);
@@ -584,8 +586,8 @@ bool OctreeCollisionModel::selfBroadPhaseInCollision(CheckerPath path,
     if (hit || !self_checked_[a * m + b]) return;
     const auto sa = static_cast<std::size_t>(self_links_[a]);
     const auto sb = static_cast<std::size_t>(self_links_[b]);
-    const LinkVoxels& va = links_[sa].forSelf();
-    const LinkVoxels& vb = links_[sb].forSelf();
+    const LinkVoxels& va = *self_voxels_[sa];
+    const LinkVoxels& vb = *self_voxels_[sb];
     hit = spheresMeet(va, scratch.centres_W[sa], vb, scratch.centres_W[sb]) &&
           linksHit(va, scratch.robot.linkPose(links_[sa].link), vb,
                    scratch.robot.linkPose(links_[sb].link), scratch.centres_W[sb], path,
@@ -599,8 +601,8 @@ bool OctreeCollisionModel::selfPairsInCollision(CheckerPath path, CheckScratch& 
   const std::vector<Eigen::Vector3d>& c_W = scratch.centres_W;
   for (const auto& [sa, sb] : pairs_) {
     const auto ia = static_cast<std::size_t>(sa), ib = static_cast<std::size_t>(sb);
-    const LinkVoxels& a = links_[ia].forSelf();
-    const LinkVoxels& b = links_[ib].forSelf();
+    const LinkVoxels& a = *self_voxels_[ia];
+    const LinkVoxels& b = *self_voxels_[ib];
     if (spheresMeet(a, c_W[ia], b, c_W[ib]) &&
         linksHit(a, scratch.robot.linkPose(links_[ia].link), b,
                  scratch.robot.linkPose(links_[ib].link), c_W[ib], path, scratch.fused)) {

@@ -246,6 +246,7 @@ class OctreeCollisionModel {
   // kObjectBoxes: each object's box grown by a voxel (so it holds the object's black voxels).
   std::vector<Eigen::AlignedBox3d> object_boxes_W_;
   std::vector<LinkTree> links_;             // modelled links only
+  std::vector<const LinkVoxels*> self_voxels_;  // per slot: links_[slot].forSelf(), one load
   std::vector<int> link_slot_;              // robot link index -> index in links_, or -1
   std::vector<std::pair<int, int>> pairs_;  // self pairs, as indices into links_
   // Self broad phase: object id i is links_[self_links_[i]] (increasing slots, so a < b ids keep
