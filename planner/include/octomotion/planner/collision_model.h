@@ -245,10 +245,10 @@ class OctreeCollisionModel {
   Eigen::AlignedBox3d environment_box_W_;  // world box of the environment's black voxels
   // kObjectBoxes: each object's box grown by a voxel (so it holds the object's black voxels).
   std::vector<Eigen::AlignedBox3d> object_boxes_W_;
-  std::vector<LinkTree> links_;             // modelled links only
+  std::vector<LinkTree> links_;                 // modelled links only
   std::vector<const LinkVoxels*> self_voxels_;  // per slot: links_[slot].forSelf(), one load
-  std::vector<int> link_slot_;              // robot link index -> index in links_, or -1
-  std::vector<std::pair<int, int>> pairs_;  // self pairs, as indices into links_
+  std::vector<int> link_slot_;                  // robot link index -> index in links_, or -1
+  std::vector<std::pair<int, int>> pairs_;      // self pairs, as indices into links_
   // Self broad phase: object id i is links_[self_links_[i]] (increasing slots, so a < b ids keep
   // the pairs' order); self_checked_[a * self_links_.size() + b] for ids a < b: a checked pair.
   // Clearance (kPointOctree): the environment's black leaves of one level, as cube centres.
