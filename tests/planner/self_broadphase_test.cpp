@@ -8,6 +8,7 @@
 #include <sstream>
 #include <thread>
 
+#include "joint_states.h"
 #include "octomotion/planner/collision_model.h"
 #include "snake_robot.h"
 
@@ -31,20 +32,6 @@ std::shared_ptr<const OctreeCollisionModel> model(
   return std::make_shared<const OctreeCollisionModel>(std::move(robot), empty, o);
 }
 
-std::vector<std::vector<double>> randomStates(const RobotModel& robot, int count,
-                                              std::uint64_t seed) {
-  std::mt19937_64 rng(seed);
-  std::vector<std::vector<double>> states;
-  for (int k = 0; k < count; ++k) {
-    std::vector<double> q;
-    for (const Variable& v : robot.variables()) {
-      q.push_back(std::uniform_real_distribution<double>(v.lower, v.upper)(rng));
-    }
-    states.push_back(std::move(q));
-  }
-  return states;
-}
-
 std::vector<char> selfAnswers(const OctreeCollisionModel& m,
                               const std::vector<std::vector<double>>& states, CheckerPath path) {
   CheckScratch scratch = m.makeScratch();
@@ -64,7 +51,7 @@ void expectSameAnswers(RobotModel robot, int states_count, std::uint64_t seed,
   const auto octree = model(robot, SelfBroadPhase::kNObjectsOctree, leaf_capacity);
   ASSERT_EQ(pairs->selfBroadPhase(), SelfBroadPhase::kPairs);
   ASSERT_EQ(octree->selfBroadPhase(), SelfBroadPhase::kNObjectsOctree);
-  const auto states = randomStates(robot, states_count, seed);
+  const auto states = test::uniformJointStates(robot, states_count, seed);
   for (const CheckerPath path : {CheckerPath::kFused, CheckerPath::kMoveTree}) {
     const std::vector<char> expected = selfAnswers(*pairs, states, path);
     const std::vector<char> got = selfAnswers(*octree, states, path);
@@ -114,7 +101,7 @@ TEST(SelfBroadPhase, ScratchWithoutBroadPhaseStillWorks) {
   const RobotModel robot = snake(24, 1.2);
   const auto octree = model(robot, SelfBroadPhase::kNObjectsOctree);
   const auto pairs = model(robot, SelfBroadPhase::kPairs);
-  const auto states = randomStates(robot, 200, 3);
+  const auto states = test::uniformJointStates(robot, 200, 3);
   CheckScratch scratch;
   scratch.robot = robot.makeData();
   CheckScratch reference = pairs->makeScratch();
@@ -130,7 +117,7 @@ TEST(SelfBroadPhase, ScratchWithoutBroadPhaseStillWorks) {
 TEST(SelfBroadPhase, ThreadsWithTheirOwnScratchAgree) {
   const RobotModel robot = snake(40, 1.2);
   const auto octree = model(robot, SelfBroadPhase::kNObjectsOctree);
-  const auto states = randomStates(robot, 601, 5);  // prime: every stride visits all
+  const auto states = test::uniformJointStates(robot, 601, 5);  // prime: every stride visits all
   const std::vector<char> expected =
       selfAnswers(*model(robot, SelfBroadPhase::kPairs), states, CheckerPath::kFused);
   const int threads = 4;
@@ -177,7 +164,7 @@ TEST(EnvironmentPreTest, ObjectBoxesMatchEnvironmentBox) {
   o.environment_pre_test = EnvironmentPreTest::kEnvironmentBox;
   const OctreeCollisionModel merged_box(robot, env, o);
   EXPECT_EQ(merged_box.report().environment_pre_test, EnvironmentPreTest::kEnvironmentBox);
-  const auto states = randomStates(robot, 2000, 4);
+  const auto states = test::uniformJointStates(robot, 2000, 4);
   for (const CheckerPath path : {CheckerPath::kFused, CheckerPath::kMoveTree}) {
     CheckScratch a = automatic.makeScratch(), b = merged_box.makeScratch();
     int hits = 0;

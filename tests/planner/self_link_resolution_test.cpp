@@ -7,6 +7,7 @@
 
 #include <random>
 
+#include "joint_states.h"
 #include "octomotion/planner/collision_model.h"
 #include "octomotion/planner/planning_scene.h"
 
@@ -46,20 +47,6 @@ const Models& bookshelf() {
     return m;
   }();
   return models;
-}
-
-std::vector<std::vector<double>> uniformStates(const RobotModel& robot, int count,
-                                               std::uint64_t seed) {
-  std::mt19937_64 rng(seed);
-  std::vector<std::vector<double>> states;
-  for (int k = 0; k < count; ++k) {
-    std::vector<double> q;
-    for (const Variable& v : robot.variables()) {
-      q.push_back(std::uniform_real_distribution<double>(v.lower, v.upper)(rng));
-    }
-    states.push_back(std::move(q));
-  }
-  return states;
 }
 
 struct Answers {
@@ -106,7 +93,7 @@ TEST(SelfLinkResolution, ReportsTheSecondTreesOfPairedLinksOnly) {
 
 TEST(SelfLinkResolution, EnvironmentFromLinkTreesSelfFromFinerTrees) {
   const Models& m = bookshelf();
-  const auto states = uniformStates(m.split->robot(), 1500, 0x5e1f);
+  const auto states = test::uniformJointStates(m.split->robot(), 1500, 0x5e1f);
   for (const CheckerPath path : {CheckerPath::kFused, CheckerPath::kMoveTree}) {
     // The moveTree path is slow at 5 mm: a subset of the states.
     const std::vector<std::vector<double>> subset(
@@ -133,7 +120,7 @@ TEST(SelfLinkResolution, BroadPhaseUsesTheSelfTreesToo) {
   const Models& m = bookshelf();
   const auto octree = build(m.scene, kResolution, kSelfResolution, SelfBroadPhase::kNObjectsOctree);
   ASSERT_EQ(octree->selfBroadPhase(), SelfBroadPhase::kNObjectsOctree);
-  const auto states = uniformStates(octree->robot(), 800, 0xb0ad);
+  const auto states = test::uniformJointStates(octree->robot(), 800, 0xb0ad);
   EXPECT_EQ(answers(*octree, states, CheckerPath::kFused).self,
             answers(*m.fine, states, CheckerPath::kFused).self);
 }
