@@ -35,7 +35,8 @@ const char* kUsage = R"(usage: tradeoff_bench [options]
   --runs N                planning runs per planner and setting (default 20)
   --planners NAME[:S],..  default RRTConnect:5,RRTstar:1
   --no-fcl-octomap        leave out FCL+OctoMap
-  --self-link-ratio R     self-collision link trees at R x each resolution (default 1)
+  --self-link-ratio R     self-collision link trees at R x each resolution (default: the link
+                          trees themselves)
 )";
 
 double number(const std::string& flag, const std::string& v) {
@@ -90,10 +91,9 @@ int run(int argc, char** argv) {
                                                          : number(arg, p.substr(colon + 1))});
       }
     } else if (arg == "--self-link-ratio") {
-      base.self_link_resolution_ratio = number(arg, value());
-      if (!(base.self_link_resolution_ratio > 0 && base.self_link_resolution_ratio <= 1)) {
-        throw InvalidArgument("--self-link-ratio: must be in (0, 1]");
-      }
+      const double r = number(arg, value());
+      if (!(r > 0 && r <= 1)) throw InvalidArgument("--self-link-ratio: must be in (0, 1]");
+      base.self_link_resolution_ratio = r;
     } else if (arg == "--no-fcl-octomap") {
       base.fcl_octomap = false;
     } else if (arg == "-h" || arg == "--help") {

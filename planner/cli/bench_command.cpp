@@ -72,7 +72,6 @@ void writeFile(const std::string& path, const std::function<void(std::ostream&)>
 
 int benchCommand(const std::vector<std::string>& args) {
   TradeStudyOptions options;
-  bool self_ratio_given = false;  // --self-link-ratio defaults to --link-ratio
   std::string out_dir = ".";
   std::vector<std::string> positional;
   for (std::size_t i = 0; i < args.size(); ++i) {
@@ -99,12 +98,10 @@ int benchCommand(const std::vector<std::string>& args) {
       const double r = parseNumber(arg, value());
       if (!(r > 0 && r <= 1)) throw InvalidArgument("--link-ratio: must be in (0, 1]");
       options.link_resolution_ratio = r;
-      if (!self_ratio_given) options.self_link_resolution_ratio = r;
     } else if (arg == "--self-link-ratio") {
       const double r = parseNumber(arg, value());
       if (!(r > 0 && r <= 1)) throw InvalidArgument("--self-link-ratio: must be in (0, 1]");
       options.self_link_resolution_ratio = r;
-      self_ratio_given = true;
     } else if (arg == "--roundings") {
       options.roundings.clear();
       for (const std::string& r : splitList(arg, value())) {

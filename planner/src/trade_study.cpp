@@ -526,8 +526,8 @@ TradeStudyResult runTradeStudy(const TradeStudyOptions& options) {
       if (options.link_resolution_ratio != 1.0) {
         mo.link_resolution = resolution * options.link_resolution_ratio;
       }
-      if (options.self_link_resolution_ratio != options.link_resolution_ratio) {
-        mo.self_link_resolution = resolution * options.self_link_resolution_ratio;
+      if (options.self_link_resolution_ratio) {
+        mo.self_link_resolution = resolution * *options.self_link_resolution_ratio;
       }
       mo.rounding = rounding;
       mo.base_position_bounds = scene.bounds;
@@ -677,8 +677,9 @@ void writeMarkdown(const TradeStudyResult& result, std::ostream& out) {
     out << " Octree link source trees at " << result.link_resolution_ratio
         << " x the environment resolution.";
   }
-  if (result.self_link_resolution_ratio != result.link_resolution_ratio) {
-    out << " Self-collision trees at " << result.self_link_resolution_ratio
+  if (result.self_link_resolution_ratio &&
+      *result.self_link_resolution_ratio != result.link_resolution_ratio) {
+    out << " Self-collision trees at " << *result.self_link_resolution_ratio
         << " x the environment resolution.";
   }
   out << "\n\n";

@@ -33,9 +33,9 @@ struct TradeStudyOptions {
   // The links' source-tree voxel size as a multiple of each resolution (1: the same). Finer link
   // trees shrink the conservative margin of self pairs, which dominates arms' false positives.
   double link_resolution_ratio = 1.0;
-  // Self-collision trees at this multiple of each resolution (1: the link trees themselves);
-  // see CollisionModelOptions::self_link_resolution.
-  double self_link_resolution_ratio = 1.0;
+  // Self-collision trees at this multiple of each resolution; empty: the link trees themselves
+  // (link_resolution_ratio). See CollisionModelOptions::self_link_resolution.
+  std::optional<double> self_link_resolution_ratio;
   std::size_t states = 20000;
   // The moveTree path is orders of magnitude slower at fine resolutions; it checks only the
   // first `move_tree_states` of the same states (0: all of them).
@@ -99,8 +99,8 @@ struct TradeStudyResult {
   std::string scene;
   bool free_flying = false;
   double scene_resolution = 0;
-  double link_resolution_ratio = 1.0;       // TradeStudyOptions::link_resolution_ratio
-  double self_link_resolution_ratio = 1.0;  // TradeStudyOptions::self_link_resolution_ratio
+  double link_resolution_ratio = 1.0;                // TradeStudyOptions::link_resolution_ratio
+  std::optional<double> self_link_resolution_ratio;  // TradeStudyOptions::...
   std::vector<CheckRow> checks;
   std::vector<PlanRow> planning;
 };
