@@ -430,7 +430,7 @@ OctreeCollisionModel::OctreeCollisionModel(RobotModel robot, const EnvironmentGe
   // inside it (a box leaving it would only cost a re-root, never a wrong answer).
   double max_radius = 0;
   for (const int slot : self_links_) {
-    max_radius = std::max(max_radius, links_[static_cast<std::size_t>(slot)].forSelf().radius);
+    max_radius = std::max(max_radius, self_voxels_[static_cast<std::size_t>(slot)]->radius);
   }
   self_root_box_W_ = Eigen::AlignedBox3d(report_.reach_W.min().array() - max_radius,
                                          report_.reach_W.max().array() + max_radius);
@@ -586,26 +586,15 @@ bool OctreeCollisionModel::selfBroadPhaseInCollision(CheckerPath path,
     if (hit || !self_checked_[a * m + b]) return;
     const auto sa = static_cast<std::size_t>(self_links_[a]);
     const auto sb = static_cast<std::size_t>(self_links_[b]);
-    const LinkVoxels& va = *self_voxels_[sa];
-    const LinkVoxels& vb = *self_voxels_[sb];
-    hit = spheresMeet(va, scratch.centres_W[sa], vb, scratch.centres_W[sb]) &&
-          linksHit(va, scratch.robot.linkPose(links_[sa].link), vb,
-                   scratch.robot.linkPose(links_[sb].link), scratch.centres_W[sb], path,
-                   scratch.fused);
+    hit = pairHits(sa, sb, path, scratch);
   });
   return hit;
 }
 
 bool OctreeCollisionModel::selfPairsInCollision(CheckerPath path, CheckScratch& scratch) const {
   placeCentres(scratch);
-  const std::vector<Eigen::Vector3d>& c_W = scratch.centres_W;
   for (const auto& [sa, sb] : pairs_) {
-    const auto ia = static_cast<std::size_t>(sa), ib = static_cast<std::size_t>(sb);
-    const LinkVoxels& a = *self_voxels_[ia];
-    const LinkVoxels& b = *self_voxels_[ib];
-    if (spheresMeet(a, c_W[ia], b, c_W[ib]) &&
-        linksHit(a, scratch.robot.linkPose(links_[ia].link), b,
-                 scratch.robot.linkPose(links_[ib].link), c_W[ib], path, scratch.fused)) {
+    if (pairHits(static_cast<std::size_t>(sa), static_cast<std::size_t>(sb), path, scratch)) {
       return true;
     }
   }

@@ -53,8 +53,9 @@ class MovableSource {
   //    the environment voxel): keeping the source whole until black cells are reached (then
   //    probeBelow descends it) beats eager splitting, whose cost is making and testing many
   //    small pieces.
-  //  - kExpandFactorDeepPairs: link against link with both trees at least kDeepPairLevels deep
-  //    (self-collision trees of 1.25 mm and finer on octo6/octo7): two solid shapes that are
+  //  - kExpandFactorDeepPairs: a link's self-collision tree at least kDeepPairLevels deep,
+  //    moved onto another link's tree of the same resolution (1.25 mm and finer on octo6/octo7;
+  //    OctreeCollisionModel picks it per self tree): two solid shapes that are
   //    close along a whole joint need tight pieces early; 25-55 % fewer cycles per check there
   //    (at 7 levels the two factors tie, at 6 and fewer the default wins by 10-40 %).
   static constexpr double kExpandFactorDefault = 8.0;

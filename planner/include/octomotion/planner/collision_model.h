@@ -232,6 +232,15 @@ class OctreeCollisionModel {
   bool linksHit(const LinkVoxels& a, const Eigen::Isometry3d& X_WA, const LinkVoxels& b,
                 const Eigen::Isometry3d& X_WB, const Eigen::Vector3d& cb_W, CheckerPath path,
                 CollisionScratch& fused) const;
+  // Both stages for the self trees of slots sa, sb (centres from placeCentres).
+  bool pairHits(std::size_t sa, std::size_t sb, CheckerPath path, CheckScratch& scratch) const {
+    const LinkVoxels& a = *self_voxels_[sa];
+    const LinkVoxels& b = *self_voxels_[sb];
+    return spheresMeet(a, scratch.centres_W[sa], b, scratch.centres_W[sb]) &&
+           linksHit(a, scratch.robot.linkPose(links_[sa].link), b,
+                    scratch.robot.linkPose(links_[sb].link), scratch.centres_W[sb], path,
+                    scratch.fused);
+  }
   // scratch.centres_W[slot]: every modelled link's self-collision sphere centre.
   void placeCentres(CheckScratch& scratch) const;
   bool selfPairsInCollision(CheckerPath path, CheckScratch& scratch) const;
