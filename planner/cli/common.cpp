@@ -50,6 +50,10 @@ bool parseSceneOption(const std::string& arg, const std::function<std::string()>
     const double r = parseNumber(arg, value());
     if (!(r > 0)) throw InvalidArgument("--self-link-resolution: must be > 0");
     overrides.self_link_resolution = r;
+  } else if (arg == "--self-pair-tables") {
+    const std::string v = value();
+    if (v != "on" && v != "off") throw InvalidArgument("--self-pair-tables: expected on or off");
+    overrides.self_pair_tables = v == "on";
   } else if (arg == "--package-path") {
     overrides.package_paths.push_back(value());
   } else {

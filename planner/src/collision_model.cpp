@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <random>
 #include <sstream>
 
 #include "collision_meshes.h"
@@ -17,6 +18,7 @@
 #include "octomotion/octree/set_ops.h"
 #include "octomotion/octree/traversal.h"
 #include "octomotion/octree/voxelize.h"
+#include "self_pair_tables.h"
 
 namespace octomotion {
 
@@ -30,6 +32,10 @@ double secondsSince(Clock::time_point t) {
 // Clearance spheres circumscribe the level-kSphereLevel cubes that hold black voxels: coarse
 // enough to be few, fine enough (8 voxels) to keep the bound useful.
 constexpr int kSphereLevel = 3;
+
+// Self-pair table oracles have at least the tolerance's double and at most this many voxels
+// across the link's longest side (time and memory stay those of a 256^3 surface).
+constexpr double kOracleVoxelsAcross = 256;
 
 double distanceToBox(const Eigen::Vector3d& p, const Eigen::AlignedBox3d& box) {
   return (p - p.cwiseMax(box.min()).cwiseMin(box.max())).norm();
@@ -402,29 +408,90 @@ OctreeCollisionModel::OctreeCollisionModel(RobotModel robot, const EnvironmentGe
   }
   // links_ is final: the self trees' addresses stay valid (moving the model moves the buffer).
   for (const LinkTree& lt : links_) self_voxels_.push_back(&lt.forSelf());
+  if (!(std::isfinite(options.self_pair_table_tolerance) &&
+        options.self_pair_table_tolerance > 0)) {
+    throw InvalidArgument("self_pair_table_tolerance must be finite and > 0");
+  }
+  const bool tables = options.self_pair_tables && options.rounding == Rounding::kConservative;
+  detail::SelfPairTableOptions table_options;
+  table_options.tolerance = options.self_pair_table_tolerance;
+  table_options.max_cells = options.self_pair_table_max_cells;
+  // The tables' inside/outside oracles: conservative trees fine enough that "black and more than
+  // a voxel diagonal from the surface" certifies shallow contacts too (one per link, on demand).
+  std::map<int, Octree> oracles;
+  auto oracle = [&](int link) -> const Octree* {
+    auto it = oracles.find(link);
+    if (it == oracles.end()) {
+      const auto s = static_cast<std::size_t>(link);
+      const double extent = boxes_L[s].sizes().maxCoeff();
+      const double res = std::min(
+          link_res, std::max(2 * options.self_pair_table_tolerance, extent / kOracleVoxelsAcross));
+      CollisionModelOptions conservative = options;
+      conservative.rounding = Rounding::kConservative;
+      it = oracles
+               .emplace(link, voxelizeLink(robot_.link(link), element_meshes[s], boxes_L[s], res,
+                                           conservative, false)
+                                  .source)
+               .first;
+    }
+    return &it->second;
+  };
   for (const auto& [a, b] : robot_.checkedPairs()) {
     const int sa = link_slot_[static_cast<std::size_t>(a)];
     const int sb = link_slot_[static_cast<std::size_t>(b)];
-    if (sa >= 0 && sb >= 0) pairs_.emplace_back(sa, sb);
+    if (sa < 0 || sb < 0) continue;
+    SelfPair pair{static_cast<std::size_t>(sa), static_cast<std::size_t>(sb), nullptr};
+    // 6a. The pair's joint-space table, classified on the exact geometry, when its pose depends
+    // on few variables and its tree test runs often enough to be worth the build.
+    if (tables &&
+        detail::pairVariables(robot_, a, b).size() <= options.self_pair_table_max_variables &&
+        treeTestShare(pair) >= kSelfPairTableMinShare) {
+      const auto t0 = Clock::now();
+      auto side = [&](int link) {
+        const Eigen::AlignedBox3d& box = boxes_L[static_cast<std::size_t>(link)];
+        double reach_L = 0;
+        for (int c = 0; c < 8; ++c) {
+          reach_L =
+              std::max(reach_L, box.corner(static_cast<Eigen::AlignedBox3d::CornerType>(c)).norm());
+        }
+        return detail::SelfPairLink{link, element_meshes[static_cast<std::size_t>(link)],
+                                    oracle(link), reach_L};
+      };
+      if (auto table = detail::buildSelfPairTable(robot_, side(a), side(b), table_options)) {
+        SelfPairTableReport r;
+        r.link_a = robot_.link(a).name;
+        r.link_b = robot_.link(b).name;
+        r.variables = table->dims();
+        r.depth = table->depth();
+        r.nodes = table->nodeCount();
+        r.bytes = table->bytes();
+        r.classified = table->classified();
+        r.free_fraction = table->volumeFractions()[JointSpaceTable::kFree];
+        r.colliding_fraction = table->volumeFractions()[JointSpaceTable::kColliding];
+        pair_tables_.push_back(std::make_unique<const JointSpaceTable>(std::move(*table)));
+        pair.table = pair_tables_.back().get();
+        r.build_seconds = secondsSince(t0);
+        report_.self_pair_tables.push_back(std::move(r));
+      }
+    }
+    pairs_.push_back(pair);
   }
   report_.self_pairs = pairs_.size();
 
   // 7. The self-collision broad phase: the links in some pair, and which of their pairs count.
   std::vector<int> id_of_slot(links_.size(), -1);
-  for (const auto& [sa, sb] : pairs_) {
-    id_of_slot[static_cast<std::size_t>(sa)] = id_of_slot[static_cast<std::size_t>(sb)] = 0;
-  }
+  for (const SelfPair& p : pairs_) id_of_slot[p.a] = id_of_slot[p.b] = 0;
   for (std::size_t slot = 0; slot < links_.size(); ++slot) {
     if (id_of_slot[slot] < 0) continue;
     id_of_slot[slot] = static_cast<int>(self_links_.size());
     self_links_.push_back(static_cast<int>(slot));
   }
   const std::size_t m = self_links_.size();
-  self_checked_.assign(m * m, 0);
-  for (const auto& [sa, sb] : pairs_) {
-    const auto a = static_cast<std::size_t>(id_of_slot[static_cast<std::size_t>(sa)]);
-    const auto b = static_cast<std::size_t>(id_of_slot[static_cast<std::size_t>(sb)]);
-    self_checked_[a * m + b] = 1;
+  self_pair_of_.assign(m * m, -1);
+  for (std::size_t i = 0; i < pairs_.size(); ++i) {
+    const auto a = static_cast<std::size_t>(id_of_slot[pairs_[i].a]);
+    const auto b = static_cast<std::size_t>(id_of_slot[pairs_[i].b]);
+    self_pair_of_[a * m + b] = static_cast<std::int32_t>(i);
   }
   // Root of the broad phase: the reach box grown by the largest link sphere, so link boxes stay
   // inside it (a box leaving it would only cost a re-root, never a wrong answer).
@@ -513,6 +580,37 @@ bool OctreeCollisionModel::linkHitsEnvironment(const LinkTree& lt, const Eigen::
   return intersects(moveTree(v.source, X_WL, environment_.grid(), options_.rounding), environment_);
 }
 
+double OctreeCollisionModel::treeTestShare(const SelfPair& pair) const {
+  const std::vector<int> vars =
+      detail::pairVariables(robot_, links_[pair.a].link, links_[pair.b].link);
+  std::vector<double> q(static_cast<std::size_t>(robot_.variableCount()));
+  for (std::size_t v = 0; v < q.size(); ++v) {
+    const Variable& var = robot_.variables()[v];
+    q[v] = var.continuous ? 0.0 : (var.lower + var.upper) / 2;
+  }
+  RobotData data = robot_.makeData();
+  std::mt19937_64 rng(1);
+  int reached = 0;
+  constexpr int kSamples = 256;
+  const LinkVoxels& a = *self_voxels_[pair.a];
+  const LinkVoxels& b = *self_voxels_[pair.b];
+  for (int i = 0; i < kSamples; ++i) {
+    for (int v : vars) {
+      const Variable& var = robot_.variables()[static_cast<std::size_t>(v)];
+      // Top 53 bits as a double in [0, 1): the same on every standard library.
+      const double u = static_cast<double>(rng() >> 11) * 0x1.0p-53;
+      q[static_cast<std::size_t>(v)] = var.lower + u * (var.upper - var.lower);
+    }
+    robot_.forwardKinematics(q.data(), q.size(), data);
+    const Eigen::Isometry3d& X_WA = data.linkPose(links_[pair.a].link);
+    const Eigen::Isometry3d& X_WB = data.linkPose(links_[pair.b].link);
+    const Eigen::Vector3d ca_W = X_WA * a.center_L, cb_W = X_WB * b.center_L;
+    const Eigen::Matrix3d R_AB = X_WA.linear().transpose() * X_WB.linear();
+    if (spheresMeet(a, ca_W, b, cb_W) && boxesMeet(a, X_WA, R_AB, b, cb_W)) ++reached;
+  }
+  return static_cast<double>(reached) / kSamples;
+}
+
 bool OctreeCollisionModel::linksHit(const LinkVoxels& a, const Eigen::Isometry3d& X_WA,
                                     const LinkVoxels& b, const Eigen::Isometry3d& X_WB,
                                     const Eigen::Vector3d& cb_W, CheckerPath path,
@@ -522,10 +620,7 @@ bool OctreeCollisionModel::linksHit(const LinkVoxels& a, const Eigen::Isometry3d
   // (much tighter than the spheres for long links). Only the rotation is formed for the test.
   const Eigen::Matrix3d R_AW = X_WA.linear().transpose();
   const Eigen::Matrix3d R_AB = R_AW * X_WB.linear();
-  if (!boxesOverlap(a.center_L, a.half_L, R_AB, R_AW * (cb_W - X_WA.translation()), b.half_L,
-                    kMotionTieTolerance * a.source.grid().voxelSize())) {
-    return false;
-  }
+  if (!boxesMeet(a, X_WA, R_AB, b, cb_W)) return false;
   Eigen::Isometry3d X_AB = Eigen::Isometry3d::Identity();
   X_AB.linear() = R_AB;
   X_AB.translation() = R_AW * (X_WB.translation() - X_WA.translation());
@@ -583,20 +678,17 @@ bool OctreeCollisionModel::selfBroadPhaseInCollision(CheckerPath path,
   const std::size_t m = self_links_.size();
   bool hit = false;
   tree.forEachCandidatePair([&](std::uint32_t a, std::uint32_t b) {
-    if (hit || !self_checked_[a * m + b]) return;
-    const auto sa = static_cast<std::size_t>(self_links_[a]);
-    const auto sb = static_cast<std::size_t>(self_links_[b]);
-    hit = pairHits(sa, sb, path, scratch);
+    if (hit) return;
+    const std::int32_t pair = self_pair_of_[a * m + b];
+    if (pair >= 0) hit = pairHits(static_cast<std::size_t>(pair), path, scratch);
   });
   return hit;
 }
 
 bool OctreeCollisionModel::selfPairsInCollision(CheckerPath path, CheckScratch& scratch) const {
   placeCentres(scratch);
-  for (const auto& [sa, sb] : pairs_) {
-    if (pairHits(static_cast<std::size_t>(sa), static_cast<std::size_t>(sb), path, scratch)) {
-      return true;
-    }
+  for (std::size_t i = 0; i < pairs_.size(); ++i) {
+    if (pairHits(i, path, scratch)) return true;
   }
   return false;
 }
@@ -696,6 +788,16 @@ std::string CollisionModelReport::toString() const {
       << " links; broad phase: " << selfBroadPhaseName(self_broad_phase);
   if (self_links >= 2) {
     out << " (auto picks the N-objects octree from " << kSelfBroadPhaseAutoLinks << " links)";
+  }
+  if (!self_pair_tables.empty()) {
+    out << "\nself-pair tables (joint space, FCL-certified cells): " << self_pair_tables.size();
+  }
+  for (const SelfPairTableReport& t : self_pair_tables) {
+    out << "\n  " << t.link_a << "-" << t.link_b << ": " << t.variables << " joint"
+        << (t.variables == 1 ? "" : "s") << ", depth " << t.depth << ", " << t.nodes << " nodes, "
+        << t.bytes << " bytes, certified free " << 100 * t.free_fraction << " %, colliding "
+        << 100 * t.colliding_fraction << " % (" << t.classified << " FCL cells, " << t.build_seconds
+        << " s)";
   }
   out << "\nmodel built in " << build_seconds << " s\n";
   return out.str();

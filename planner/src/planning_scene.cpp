@@ -132,6 +132,7 @@ PlanningScene loadPlanningScene(const std::string& scene_path, const SceneOverri
   if (overrides.self_link_resolution) {
     spec.octree.self_link_resolution = *overrides.self_link_resolution;
   }
+  if (overrides.self_pair_tables) spec.octree.self_pair_tables = *overrides.self_pair_tables;
   // Seed before OMPL creates any random number generator.
   if (spec.problem.seed) ompl::RNG::setSeed(*spec.problem.seed);
 
@@ -193,6 +194,7 @@ PlanningScene loadPlanningScene(const std::string& scene_path, const SceneOverri
   options.resolution = *spec.octree.resolution;
   options.link_resolution = spec.octree.link_resolution;
   options.self_link_resolution = spec.octree.self_link_resolution;
+  options.self_pair_tables = spec.octree.self_pair_tables;
   options.rounding = spec.octree.rounding;
   if (spec.octree.max_surface_voxels) options.max_surface_voxels = *spec.octree.max_surface_voxels;
   options.base_position_bounds = spec.problem.bounds;

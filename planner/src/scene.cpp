@@ -246,8 +246,8 @@ void parseEnvironment(const YamlReader& r, const YAML::Node& node, SceneSpec& sc
 
 void parseOctree(const YamlReader& r, const YAML::Node& node, SceneSpec& scene) {
   r.allowOnly(node, "octree",
-              {"resolution", "link_resolution", "self_link_resolution", "rounding", "checker",
-               "max_surface_voxels"});
+              {"resolution", "link_resolution", "self_link_resolution", "self_pair_tables",
+               "rounding", "checker", "max_surface_voxels"});
   OctreeSettings& s = scene.octree;
   if (const YAML::Node res = node["resolution"]) {
     if (!(res.IsScalar() && res.Scalar() == "auto")) {
@@ -260,6 +260,13 @@ void parseOctree(const YamlReader& r, const YAML::Node& node, SceneSpec& scene) 
   if (node["self_link_resolution"]) {
     s.self_link_resolution =
         r.positive(node["self_link_resolution"], "octree.self_link_resolution");
+  }
+  if (node["self_pair_tables"]) {
+    const std::string v = r.string(node["self_pair_tables"], "octree.self_pair_tables");
+    if (v != "true" && v != "false") {
+      r.fail("octree.self_pair_tables", node["self_pair_tables"], "expected true or false");
+    }
+    s.self_pair_tables = v == "true";
   }
   if (node["max_surface_voxels"]) {
     s.max_surface_voxels = r.positive(node["max_surface_voxels"], "octree.max_surface_voxels");

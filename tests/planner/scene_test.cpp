@@ -31,7 +31,8 @@ environment:
   - mesh: {file: meshes/table.stl, scale: [0.001, 0.001, 0.001]}
   - pointcloud: {file: scan.pcd}
   - octomap: {file: /maps/room.bt}
-octree: {resolution: 0.01, link_resolution: 0.02, self_link_resolution: 0.004, rounding: center,
+octree: {resolution: 0.01, link_resolution: 0.02, self_link_resolution: 0.004,
+         self_pair_tables: true, rounding: center,
          checker: octree}
 problem:
   start: [0, 0.1, 0, -1.2, 0, 1.0, 0, 0.02]
@@ -73,6 +74,7 @@ TEST(Scene, ParsesEveryField) {
   EXPECT_DOUBLE_EQ(*s.octree.resolution, 0.01);
   EXPECT_DOUBLE_EQ(*s.octree.link_resolution, 0.02);
   EXPECT_DOUBLE_EQ(*s.octree.self_link_resolution, 0.004);
+  EXPECT_TRUE(s.octree.self_pair_tables);
   EXPECT_EQ(s.octree.rounding, Rounding::kCenter);
   EXPECT_EQ(s.octree.checker, "octree");
   ASSERT_TRUE(s.problem.start && s.problem.goal);
@@ -117,6 +119,7 @@ void expectError(const std::string& yaml, const std::string& field) {
 
 TEST(Scene, BadFieldsAreNamed) {
   expectError("robot: {urdf: a.urdf, mesh: b.stl}", "robot");
+  expectError("robot: {mesh: m.stl}\noctree: {self_pair_tables: maybe}", "octree.self_pair_tables");
   expectError("robot: {}", "robot");
   expectError("environment: []", "robot: missing");
   expectError("robot: {mesh: m.stl}\nenvironment:\n  - box: {size: [1, 0, 1]}",

@@ -18,10 +18,13 @@
 #include <Eigen/Geometry>
 
 #include "octomotion/broadphase/n_objects_octree.h"
+#include "octomotion/motion/box_overlap.h"
 #include "octomotion/motion/collides.h"
+#include "octomotion/motion/pose.h"
 #include "octomotion/octree/octree.h"
 #include "octomotion/octree/rounding.h"
 #include "octomotion/planner/environment.h"
+#include "octomotion/planner/joint_space_table.h"
 #include "octomotion/planner/robot_model.h"
 #include "octomotion/pointcloud/point_octree.h"
 
@@ -98,6 +101,20 @@ struct CollisionModelOptions {
   ClearanceMethod clearance = ClearanceMethod::kPointOctree;
   EnvironmentPreTest environment_pre_test = EnvironmentPreTest::kAuto;
   std::uint32_t self_broad_phase_leaf_capacity = kSelfBroadPhaseLeafCapacity;  // N (>= 1)
+  // Self pairs whose relative pose depends on one to three joint variables (a wrist: q6, q7)
+  // get a JointSpaceTable classified with FCL on the exact geometry at build time: states in a
+  // certified cell skip the octree pair test, the rest take it (docs/planner.md, "Self-pair
+  // tables"). Conservative rounding only (the tables use the conservative trees as their
+  // inside/outside oracle). The tolerance is the widest relative motion within a finest cell:
+  // the band around contact left to the octree test.
+  // Only pairs of at most this many variables (<= JointSpaceTable::kMaxDims) get one: a 3-joint
+  // table takes seconds to classify. And only pairs whose tree test runs for at least
+  // kSelfPairTableMinShare of their joint space: the others are cheap already. Off by default:
+  // classifying costs ~1 s per model on octo7 and ~15 s on octo6 (docs/planner.md).
+  bool self_pair_tables = false;
+  double self_pair_table_tolerance = 1e-3;        // metres, > 0
+  std::size_t self_pair_table_max_cells = 40000;  // FCL classifications per pair
+  std::size_t self_pair_table_max_variables = 2;
   WarningSink warnings;
 };
 
@@ -113,6 +130,21 @@ struct LinkReport {
   double build_seconds = 0;
 };
 
+inline constexpr double kSelfPairTableMinShare = 0.01;
+
+struct SelfPairTableReport {
+  std::string link_a, link_b;
+  int variables = 0;  // dimensions of the table
+  int depth = 0;      // finest cells: 2^-depth of each variable's range
+  std::size_t nodes = 0;
+  std::size_t bytes = 0;
+  std::size_t classified = 0;  // FCL classifications made
+  // Share of the pair's joint space certified free / colliding (the rest: octree test).
+  double free_fraction = 0;
+  double colliding_fraction = 0;
+  double build_seconds = 0;
+};
+
 struct CollisionModelReport {
   WorldGrid grid{Eigen::Vector3d::Zero(), 1.0, 1};
   double link_resolution = 0;
@@ -125,6 +157,7 @@ struct CollisionModelReport {
   SelfBroadPhase self_broad_phase = SelfBroadPhase::kPairs;  // resolved (never kAuto)
   EnvironmentPreTest environment_pre_test = EnvironmentPreTest::kEnvironmentBox;  // resolved
   std::size_t environment_object_boxes = 0;  // object boxes the pre-test loops over
+  std::vector<SelfPairTableReport> self_pair_tables;
   double build_seconds = 0;
   std::string toString() const;  // the human-readable "what was modelled" summary
 };
@@ -228,17 +261,31 @@ class OctreeCollisionModel {
     const double reach = a.radius + b.radius + a.source_diagonal;
     return (ca_W - cb_W).squaredNorm() <= reach * reach;
   }
+  // The boxes of A's and B's black voxels (B's rotation in A: R_AB) overlap.
+  static bool boxesMeet(const LinkVoxels& a, const Eigen::Isometry3d& X_WA,
+                        const Eigen::Matrix3d& R_AB, const LinkVoxels& b,
+                        const Eigen::Vector3d& cb_W) {
+    return boxesOverlap(a.center_L, a.half_L, R_AB,
+                        X_WA.linear().transpose() * (cb_W - X_WA.translation()), b.half_L,
+                        kMotionTieTolerance * a.source.grid().voxelSize());
+  }
   // linksHit, for pairs whose spheres meet: the oriented boxes, then the trees.
   bool linksHit(const LinkVoxels& a, const Eigen::Isometry3d& X_WA, const LinkVoxels& b,
                 const Eigen::Isometry3d& X_WB, const Eigen::Vector3d& cb_W, CheckerPath path,
                 CollisionScratch& fused) const;
-  // Both stages for the self trees of slots sa, sb (centres from placeCentres).
-  bool pairHits(std::size_t sa, std::size_t sb, CheckerPath path, CheckScratch& scratch) const {
-    const LinkVoxels& a = *self_voxels_[sa];
-    const LinkVoxels& b = *self_voxels_[sb];
-    return spheresMeet(a, scratch.centres_W[sa], b, scratch.centres_W[sb]) &&
-           linksHit(a, scratch.robot.linkPose(links_[sa].link), b,
-                    scratch.robot.linkPose(links_[sb].link), scratch.centres_W[sb], path,
+  // Self pair `pair` (index into pairs_): the spheres (centres from placeCentres), then its
+  // joint-space table when it has one, then the boxes and trees of the self trees.
+  bool pairHits(std::size_t pair, CheckerPath path, CheckScratch& scratch) const {
+    const SelfPair& p = pairs_[pair];
+    const LinkVoxels& a = *self_voxels_[p.a];
+    const LinkVoxels& b = *self_voxels_[p.b];
+    if (!spheresMeet(a, scratch.centres_W[p.a], b, scratch.centres_W[p.b])) return false;
+    if (p.table) {
+      const JointSpaceTable::Cell cell = p.table->lookup(scratch.robot.joint_values.data());
+      if (cell != JointSpaceTable::kUnknown) return cell == JointSpaceTable::kColliding;
+    }
+    return linksHit(a, scratch.robot.linkPose(links_[p.a].link), b,
+                    scratch.robot.linkPose(links_[p.b].link), scratch.centres_W[p.b], path,
                     scratch.fused);
   }
   // scratch.centres_W[slot]: every modelled link's self-collision sphere centre.
@@ -257,9 +304,17 @@ class OctreeCollisionModel {
   std::vector<LinkTree> links_;                 // modelled links only
   std::vector<const LinkVoxels*> self_voxels_;  // per slot: links_[slot].forSelf(), one load
   std::vector<int> link_slot_;                  // robot link index -> index in links_, or -1
-  std::vector<std::pair<int, int>> pairs_;      // self pairs, as indices into links_
+  struct SelfPair {
+    std::size_t a, b;                        // slots in links_
+    const JointSpaceTable* table = nullptr;  // in pair_tables_, or none
+  };
+  // Share of the pair's joint space (256 samples) whose states reach the tree test.
+  double treeTestShare(const SelfPair& pair) const;
+  std::vector<SelfPair> pairs_;
+  std::vector<std::unique_ptr<const JointSpaceTable>> pair_tables_;
   // Self broad phase: object id i is links_[self_links_[i]] (increasing slots, so a < b ids keep
-  // the pairs' order); self_checked_[a * self_links_.size() + b] for ids a < b: a checked pair.
+  // the pairs' order); self_pair_of_[a * self_links_.size() + b] for ids a < b: the index in
+  // pairs_ of a checked pair, or -1.
   // Clearance (kPointOctree): the environment's black leaves of one level, as cube centres.
   struct ClearanceLevel {
     double half_diagonal = 0;  // of that level's cubes (metres)
@@ -268,7 +323,7 @@ class OctreeCollisionModel {
   std::vector<ClearanceLevel> clearance_levels_;
   double clearance_float_slack_ = 0;  // covers float rounding of centres and distances
   std::vector<int> self_links_;
-  std::vector<std::uint8_t> self_checked_;
+  std::vector<std::int32_t> self_pair_of_;
   Eigen::AlignedBox3d self_root_box_W_;  // the broad phase's root: everything links can reach
   CollisionModelReport report_;
 };

@@ -34,6 +34,7 @@ struct SceneOverrides {
   std::vector<std::string> package_paths;
   std::optional<double> max_surface_voxels;    // > 0; the memory guard, see CollisionModelOptions
   std::optional<double> self_link_resolution;  // > 0; octree.self_link_resolution
+  std::optional<bool> self_pair_tables;        // octree.self_pair_tables
 };
 
 // The resolution used when a scene says `auto` (or a .cfg says nothing): fixed-base arms 1 cm;

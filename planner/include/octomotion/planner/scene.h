@@ -45,6 +45,8 @@ struct OctreeSettings {
   std::optional<double> link_resolution;  // coarser per-link source trees; empty = resolution
   // Finer trees for the self-collision pairs only; empty = link_resolution.
   std::optional<double> self_link_resolution;
+  // Joint-space tables for self pairs of few joints (CollisionModelOptions::self_pair_tables).
+  bool self_pair_tables = false;
   Rounding rounding = Rounding::kConservative;
   std::string checker = "octree-fused";  // one of kCheckerNames
   // Memory guard (CollisionModelOptions::max_surface_voxels); empty = the library default.
