@@ -218,6 +218,10 @@ OctreeCollisionModel::OctreeCollisionModel(RobotModel robot, const EnvironmentGe
   if (!(std::isfinite(self_res) && self_res > 0)) {
     throw InvalidArgument("self-collision link resolution must be finite and > 0");
   }
+  if (!(std::isfinite(options.self_pair_table_tolerance) &&
+        options.self_pair_table_tolerance > 0)) {
+    throw InvalidArgument("self_pair_table_tolerance must be finite and > 0");
+  }
   if (options.self_broad_phase_leaf_capacity < 1) {
     throw InvalidArgument("self_broad_phase_leaf_capacity must be >= 1");
   }
@@ -233,8 +237,9 @@ OctreeCollisionModel::OctreeCollisionModel(RobotModel robot, const EnvironmentGe
   const auto n = static_cast<std::size_t>(n_links);
   std::vector<Eigen::AlignedBox3d> boxes_L(n);
   std::vector<std::vector<const TriangleMesh*>> element_meshes(n);
-  // Farthest point of a link's voxels from its frame origin: its geometry plus one voxel diagonal.
-  std::vector<double> geometry_reach(n, 0.0);
+  // Farthest point of a link's geometry from its frame origin (exact: the self-pair tables' motion
+  // bound), and of its voxels (plus one voxel diagonal).
+  std::vector<double> geometry_extent(n, 0.0), geometry_reach(n, 0.0);
   report_.links.resize(n);
   for (int i = 0; i < n_links; ++i) {
     const Link& link = robot_.link(i);
@@ -251,12 +256,13 @@ OctreeCollisionModel::OctreeCollisionModel(RobotModel robot, const EnvironmentGe
       }
     }
     if (box_L.isEmpty()) continue;
+    double& extent = geometry_extent[static_cast<std::size_t>(i)];
     for (int c = 0; c < 8; ++c) {
-      geometry_reach[static_cast<std::size_t>(i)] =
-          std::max(geometry_reach[static_cast<std::size_t>(i)],
-                   box_L.corner(static_cast<Eigen::AlignedBox3d::CornerType>(c)).norm());
+      extent =
+          std::max(extent, box_L.corner(static_cast<Eigen::AlignedBox3d::CornerType>(c)).norm());
     }
-    geometry_reach[static_cast<std::size_t>(i)] += std::sqrt(3.0) * std::max(link_res, self_res);
+    geometry_reach[static_cast<std::size_t>(i)] =
+        extent + std::sqrt(3.0) * std::max(link_res, self_res);
   }
 
   // 2. What the robot can reach: bound each link's distance from the base origin along its
@@ -408,10 +414,6 @@ OctreeCollisionModel::OctreeCollisionModel(RobotModel robot, const EnvironmentGe
   }
   // links_ is final: the self trees' addresses stay valid (moving the model moves the buffer).
   for (const LinkTree& lt : links_) self_voxels_.push_back(&lt.forSelf());
-  if (!(std::isfinite(options.self_pair_table_tolerance) &&
-        options.self_pair_table_tolerance > 0)) {
-    throw InvalidArgument("self_pair_table_tolerance must be finite and > 0");
-  }
   const bool tables = options.self_pair_tables && options.rounding == Rounding::kConservative;
   detail::SelfPairTableOptions table_options;
   table_options.tolerance = options.self_pair_table_tolerance;
@@ -443,19 +445,13 @@ OctreeCollisionModel::OctreeCollisionModel(RobotModel robot, const EnvironmentGe
     SelfPair pair{static_cast<std::size_t>(sa), static_cast<std::size_t>(sb), nullptr};
     // 6a. The pair's joint-space table, classified on the exact geometry, when its pose depends
     // on few variables and its tree test runs often enough to be worth the build.
-    if (tables &&
-        detail::pairVariables(robot_, a, b).size() <= options.self_pair_table_max_variables &&
-        treeTestShare(pair) >= kSelfPairTableMinShare) {
+    const std::vector<int> vars = tables ? detail::pairVariables(robot_, a, b) : std::vector<int>{};
+    if (tables && vars.size() <= options.self_pair_table_max_variables &&
+        treeTestShare(pair, vars) >= kSelfPairTableMinShare) {
       const auto t0 = Clock::now();
       auto side = [&](int link) {
-        const Eigen::AlignedBox3d& box = boxes_L[static_cast<std::size_t>(link)];
-        double reach_L = 0;
-        for (int c = 0; c < 8; ++c) {
-          reach_L =
-              std::max(reach_L, box.corner(static_cast<Eigen::AlignedBox3d::CornerType>(c)).norm());
-        }
-        return detail::SelfPairLink{link, element_meshes[static_cast<std::size_t>(link)],
-                                    oracle(link), reach_L};
+        const auto s = static_cast<std::size_t>(link);
+        return detail::SelfPairLink{link, element_meshes[s], oracle(link), geometry_extent[s]};
       };
       if (auto table = detail::buildSelfPairTable(robot_, side(a), side(b), table_options)) {
         SelfPairTableReport r;
@@ -580,14 +576,9 @@ bool OctreeCollisionModel::linkHitsEnvironment(const LinkTree& lt, const Eigen::
   return intersects(moveTree(v.source, X_WL, environment_.grid(), options_.rounding), environment_);
 }
 
-double OctreeCollisionModel::treeTestShare(const SelfPair& pair) const {
-  const std::vector<int> vars =
-      detail::pairVariables(robot_, links_[pair.a].link, links_[pair.b].link);
-  std::vector<double> q(static_cast<std::size_t>(robot_.variableCount()));
-  for (std::size_t v = 0; v < q.size(); ++v) {
-    const Variable& var = robot_.variables()[v];
-    q[v] = var.continuous ? 0.0 : (var.lower + var.upper) / 2;
-  }
+double OctreeCollisionModel::treeTestShare(const SelfPair& pair,
+                                           const std::vector<int>& vars) const {
+  std::vector<double> q = detail::middleConfiguration(robot_);
   RobotData data = robot_.makeData();
   std::mt19937_64 rng(1);
   int reached = 0;

@@ -86,7 +86,8 @@ class LinkShapes {
       const TriangleMesh* mesh = in.element_mesh[k];
       fcl_internal::Geom g = mesh ? fcl_internal::meshOf(*mesh)
                                   : fcl_internal::shapeOf(std::get<Primitive>(e.geometry));
-      elements_.push_back({e.X_LE, mesh ? nullptr : &std::get<Primitive>(e.geometry), g});
+      elements_.push_back({e.X_LE, mesh ? nullptr : &std::get<Primitive>(e.geometry), g,
+                           fcl::CollisionObjectd(g, e.X_LE.rotation(), e.X_LE.translation())});
       // Points of the solid: a spread of mesh vertices, or the primitive's centre and corners.
       if (mesh) {
         const std::size_t n = mesh->vertices.size();
@@ -126,6 +127,7 @@ class LinkShapes {
     Eigen::Isometry3d X_LE;
     const Primitive* primitive;  // nullptr: a mesh
     fcl_internal::Geom geometry;
+    fcl::CollisionObjectd posed;  // in the link frame, made once (FCL computes its AABBs then)
   };
   const std::vector<Element>& elements() const { return elements_; }
   const std::vector<Eigen::Vector3d>& points_L() const { return points_L_; }
@@ -141,11 +143,10 @@ class LinkShapes {
         best = std::min(best, primitiveSurfaceDistance(*e.primitive, e.X_LE.inverse() * p_L));
         continue;
       }
-      fcl::CollisionObjectd mesh(e.geometry, e.X_LE.rotation(), e.X_LE.translation());
       fcl::CollisionObjectd point(probe_, Eigen::Matrix3d::Identity(), p_L);
       fcl::DistanceRequestd request;
       fcl::DistanceResultd result;
-      fcl::distance(&point, &mesh, request, result);
+      fcl::distance(&point, &e.posed, request, result);
       best = std::min(best, std::max(0.0, result.min_distance));
     }
     return best;
@@ -176,6 +177,14 @@ std::vector<int> pairVariables(const RobotModel& robot, int link_a, int link_b) 
     }
   }
   return {vars.begin(), vars.end()};
+}
+
+std::vector<double> middleConfiguration(const RobotModel& robot) {
+  std::vector<double> q;
+  for (const Variable& var : robot.variables()) {
+    q.push_back(var.continuous ? 0.0 : (var.lower + var.upper) / 2);
+  }
+  return q;
 }
 
 std::optional<JointSpaceTable> buildSelfPairTable(const RobotModel& robot, const SelfPairLink& a,
@@ -227,19 +236,12 @@ std::optional<JointSpaceTable> buildSelfPairTable(const RobotModel& robot, const
 
   const LinkShapes shapes_a(robot, a), shapes_b(robot, b);
   RobotData data = robot.makeData();
-  std::vector<double> q(static_cast<std::size_t>(robot.variableCount()));
-  for (std::size_t v = 0; v < q.size(); ++v) {
-    const Variable& var = robot.variables()[v];
-    q[v] = var.continuous ? 0.0 : (var.lower + var.upper) / 2;
-  }
+  std::vector<double> q = middleConfiguration(robot);
   fcl::CollisionRequestd collide_request;
   fcl::CollisionResultd collide_result;
   fcl::DistanceRequestd distance_request;
   fcl::DistanceResultd distance_result;
-  std::vector<fcl::CollisionObjectd> objects_a, objects_b;
-  for (const auto& e : shapes_a.elements()) {
-    objects_a.emplace_back(e.geometry, e.X_LE.rotation(), e.X_LE.translation());
-  }
+  std::vector<fcl::CollisionObjectd> objects_b;
   for (const auto& e : shapes_b.elements()) objects_b.emplace_back(e.geometry);
 
   // Some point of `from` (its frame) is outside `to`'s solid (a white voxel of its oracle).
@@ -280,8 +282,8 @@ std::optional<JointSpaceTable> buildSelfPairTable(const RobotModel& robot, const
     }
     bool touching = false;
     double distance = std::numeric_limits<double>::infinity();
-    for (auto& oa : objects_a) {
-      oa.computeAABB();
+    for (const auto& ea : shapes_a.elements()) {  // a does not move: posed once
+      const fcl::CollisionObjectd& oa = ea.posed;
       for (const auto& ob : objects_b) {
         collide_result.clear();
         if (fcl::collide(&oa, &ob, collide_request, collide_result) > 0) {

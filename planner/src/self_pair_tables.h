@@ -32,6 +32,10 @@ struct SelfPairTableOptions {
 // The variables (indices into q) the relative pose of links a and b depends on.
 std::vector<int> pairVariables(const RobotModel& robot, int link_a, int link_b);
 
+// Every variable at the middle of its limits (continuous ones at 0): the configuration whose
+// other variables a pair's table and sampling hold fixed (they do not move the pair).
+std::vector<double> middleConfiguration(const RobotModel& robot);
+
 // A table for the pair when its relative pose depends on 1 ... JointSpaceTable::kMaxDims
 // variables; nullopt otherwise. A cell is kFree when FCL's distance at its centre exceeds the
 // cell's motion bound (and neither link is inside the other), kColliding when a point of one link

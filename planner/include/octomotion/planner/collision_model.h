@@ -101,16 +101,15 @@ struct CollisionModelOptions {
   ClearanceMethod clearance = ClearanceMethod::kPointOctree;
   EnvironmentPreTest environment_pre_test = EnvironmentPreTest::kAuto;
   std::uint32_t self_broad_phase_leaf_capacity = kSelfBroadPhaseLeafCapacity;  // N (>= 1)
-  // Self pairs whose relative pose depends on one to three joint variables (a wrist: q6, q7)
-  // get a JointSpaceTable classified with FCL on the exact geometry at build time: states in a
-  // certified cell skip the octree pair test, the rest take it (docs/planner.md, "Self-pair
-  // tables"). Conservative rounding only (the tables use the conservative trees as their
-  // inside/outside oracle). The tolerance is the widest relative motion within a finest cell:
-  // the band around contact left to the octree test.
-  // Only pairs of at most this many variables (<= JointSpaceTable::kMaxDims) get one: a 3-joint
-  // table takes seconds to classify. And only pairs whose tree test runs for at least
-  // kSelfPairTableMinShare of their joint space: the others are cheap already. Off by default:
-  // classifying costs ~1 s per model on octo7 and ~15 s on octo6 (docs/planner.md).
+  // Self pairs whose relative pose depends on at most self_pair_table_max_variables joint
+  // variables (<= JointSpaceTable::kMaxDims; a wrist: q6, q7), and whose tree test runs for at
+  // least kSelfPairTableMinShare of their joint space, get a JointSpaceTable classified with FCL
+  // on the exact geometry at build time: states in a certified cell skip the octree pair test,
+  // the rest take it (docs/planner.md, "Self-pair tables"). Conservative rounding only (the
+  // tables use conservative trees as their inside/outside oracle). The tolerance is the widest
+  // relative motion within a finest cell: the band around contact left to the octree test. A
+  // 3-joint table takes seconds to classify. Off by default: classifying costs ~1 s per model on
+  // octo7 and ~13-15 s on octo6 (docs/planner.md).
   bool self_pair_tables = false;
   double self_pair_table_tolerance = 1e-3;        // metres, > 0
   std::size_t self_pair_table_max_cells = 40000;  // FCL classifications per pair
@@ -308,8 +307,9 @@ class OctreeCollisionModel {
     std::size_t a, b;                        // slots in links_
     const JointSpaceTable* table = nullptr;  // in pair_tables_, or none
   };
-  // Share of the pair's joint space (256 samples) whose states reach the tree test.
-  double treeTestShare(const SelfPair& pair) const;
+  // Share of the pair's joint space (its variables `vars`, 256 samples) whose states reach the
+  // tree test.
+  double treeTestShare(const SelfPair& pair, const std::vector<int>& vars) const;
   std::vector<SelfPair> pairs_;
   std::vector<std::unique_ptr<const JointSpaceTable>> pair_tables_;
   // Self broad phase: object id i is links_[self_links_[i]] (increasing slots, so a < b ids keep
