@@ -127,7 +127,14 @@ struct LinkReport {
   int source_depth = 0;
   double radius = 0;  // bounding sphere of the source tree's black voxels (metres)
   double build_seconds = 0;
+  // Share of kEnvironmentOrderSamples uniform joint states in which the link's tree meets the
+  // environment's (arms; -1 when not sampled): the environment half tests links in decreasing
+  // share, so a colliding state usually stops at its first tree query.
+  double environment_hit_share = -1;
 };
+
+// Joint states sampled at build time to order the environment half's links (arms only).
+inline constexpr int kEnvironmentOrderSamples = 512;
 
 inline constexpr double kSelfPairTableMinShare = 0.01;
 
@@ -155,7 +162,8 @@ struct CollisionModelReport {
   std::size_t self_links = 0;  // links taking part in at least one self pair
   SelfBroadPhase self_broad_phase = SelfBroadPhase::kPairs;  // resolved (never kAuto)
   EnvironmentPreTest environment_pre_test = EnvironmentPreTest::kEnvironmentBox;  // resolved
-  std::size_t environment_object_boxes = 0;  // object boxes the pre-test loops over
+  std::size_t environment_object_boxes = 0;    // object boxes the pre-test loops over
+  std::vector<std::string> environment_order;  // links in the order the environment half tests
   std::vector<SelfPairTableReport> self_pair_tables;
   double build_seconds = 0;
   std::string toString() const;  // the human-readable "what was modelled" summary
@@ -300,7 +308,12 @@ class OctreeCollisionModel {
   Eigen::AlignedBox3d environment_box_W_;  // world box of the environment's black voxels
   // kObjectBoxes: each object's box grown by a voxel (so it holds the object's black voxels).
   std::vector<Eigen::AlignedBox3d> object_boxes_W_;
-  std::vector<LinkTree> links_;                 // modelled links only
+  std::vector<LinkTree> links_;  // modelled links only
+  // Slots of the links that can touch the environment, in the order environmentInCollision
+  // tests them: most often hit first (LinkReport::environment_hit_share), ties in model order.
+  // Free states test them all either way; colliding ones stop sooner.
+  std::vector<std::size_t> environment_order_;
+  void orderEnvironmentLinks();
   std::vector<const LinkVoxels*> self_voxels_;  // per slot: links_[slot].forSelf(), one load
   std::vector<int> link_slot_;                  // robot link index -> index in links_, or -1
   struct SelfPair {
