@@ -37,6 +37,7 @@ const char* kUsage = R"(usage: tradeoff_bench [options]
   --no-fcl-octomap        leave out FCL+OctoMap
   --self-link-ratio R     self-collision link trees at R x each resolution (default: the link
                           trees themselves)
+  --self-pair-tables on|off  joint-space tables for self pairs (default: the scene's setting)
 )";
 
 double number(const std::string& flag, const std::string& v) {
@@ -94,6 +95,10 @@ int run(int argc, char** argv) {
       const double r = number(arg, value());
       if (!(r > 0 && r <= 1)) throw InvalidArgument("--self-link-ratio: must be in (0, 1]");
       base.self_link_resolution_ratio = r;
+    } else if (arg == "--self-pair-tables") {
+      const std::string v = value();
+      if (v != "on" && v != "off") throw InvalidArgument("--self-pair-tables: expected on or off");
+      base.overrides.self_pair_tables = v == "on";
     } else if (arg == "--no-fcl-octomap") {
       base.fcl_octomap = false;
     } else if (arg == "-h" || arg == "--help") {

@@ -39,6 +39,9 @@ bench options:
   --seed N                 seeds the states and OMPL (default 1)
   --time S                 default planning time limit (default: the scene's)
   --package-path DIR       extra package:// search path (repeatable)
+  --self-pair-tables on|off  joint-space tables for self pairs in every conservative setting
+                           (default: the scene's octree.self_pair_tables)
+  --max-surface-voxels N   the memory guard (default: the scene's, else the library's)
 )";
 
 std::vector<std::string> splitList(const std::string& flag, const std::string& value) {
@@ -143,10 +146,11 @@ int benchCommand(const std::vector<std::string>& args) {
   }
   if (positional.size() != 1) throw InvalidArgument("bench: expected one scene (see --help)");
   if (options.overrides.resolution || options.overrides.auto_resolution ||
-      options.overrides.checker || options.overrides.rounding || options.overrides.planner) {
+      options.overrides.checker || options.overrides.rounding || options.overrides.planner ||
+      options.overrides.self_link_resolution) {
     throw InvalidArgument(
-        "bench: --resolution/--rounding/--checker/--planner do not apply; use --resolutions, "
-        "--roundings, --paths, --planners");
+        "bench: --resolution/--rounding/--checker/--planner/--self-link-resolution do not apply; "
+        "use --resolutions, --roundings, --paths, --planners, --self-link-ratio");
   }
   options.scene_path = positional.front();
   if (options.overrides.seed) options.seed = *options.overrides.seed;

@@ -53,6 +53,12 @@ StudyScene loadStudyScene(const TradeStudyOptions& options, const WarningSink& w
   StudyScene s;
   s.spec = loadScene(options.scene_path);
   SceneSpec& spec = s.spec;
+  if (options.overrides.self_pair_tables) {
+    spec.octree.self_pair_tables = *options.overrides.self_pair_tables;
+  }
+  if (options.overrides.max_surface_voxels) {
+    spec.octree.max_surface_voxels = *options.overrides.max_surface_voxels;
+  }
   if (!spec.robot.urdf.empty()) {
     RobotModelOptions ro;
     ro.package_paths = spec.robot.package_paths;
@@ -439,6 +445,7 @@ TradeStudyResult runTradeStudy(const TradeStudyOptions& options) {
   result.scene_resolution = scene.resolution;
   result.link_resolution_ratio = options.link_resolution_ratio;
   result.self_link_resolution_ratio = options.self_link_resolution_ratio;
+  result.self_pair_tables = spec.octree.self_pair_tables;
   std::vector<double> resolutions = options.resolutions.empty()
                                         ? defaultResolutions(free_flying, scene.resolution)
                                         : options.resolutions;
@@ -530,6 +537,8 @@ TradeStudyResult runTradeStudy(const TradeStudyOptions& options) {
         mo.self_link_resolution = resolution * *options.self_link_resolution_ratio;
       }
       mo.rounding = rounding;
+      mo.self_pair_tables = spec.octree.self_pair_tables;
+      if (spec.octree.max_surface_voxels) mo.max_surface_voxels = *spec.octree.max_surface_voxels;
       mo.base_position_bounds = scene.bounds;
       mo.keep_mesh_root_transform = spec.robot.keep_mesh_root_transform;
       mo.center_mesh_vertices = spec.robot.center_mesh_vertices;
@@ -681,6 +690,9 @@ void writeMarkdown(const TradeStudyResult& result, std::ostream& out) {
       *result.self_link_resolution_ratio != result.link_resolution_ratio) {
     out << " Self-collision trees at " << *result.self_link_resolution_ratio
         << " x the environment resolution.";
+  }
+  if (result.self_pair_tables) {
+    out << " Self-pair tables on (conservative settings; docs/planner.md, \"Self-pair tables\").";
   }
   out << "\n\n";
   out << "| checker | resolution | rounding | mean | free median | free p90 | colliding median "

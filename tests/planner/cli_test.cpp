@@ -56,10 +56,22 @@ TEST(Cli, InfoDescribesWhatIsModelled) {
   EXPECT_THAT(r.out, HasSubstr("hand: "));
   EXPECT_THAT(r.out, HasSubstr("self-collision pairs checked: "));
   EXPECT_THAT(r.out, Not(HasSubstr("self-collision trees")));
+  EXPECT_THAT(r.out, HasSubstr("environment tested in the order (share of sampled states "
+                               "hitting): hand"));
   const CliRun fine =
       run("info " + scene("bookshelf.yaml") + " --resolution 0.02 --self-link-resolution 0.005");
   ASSERT_EQ(fine.status, 0) << fine.err;
   EXPECT_THAT(fine.out, HasSubstr("self-collision trees 0.005 m"));
+}
+
+// Options that name one setting are the study's own lists (--resolutions, --self-link-ratio ...):
+// a one-setting option would otherwise be silently ignored.
+TEST(Cli, BenchRejectsSingleSettingOptions) {
+  for (const char* option : {"--resolution 0.01", "--self-link-resolution 0.002"}) {
+    const CliRun r = run("bench " + scene("bookshelf.yaml") + " --states 10 --runs 0 " + option);
+    EXPECT_NE(r.status, 0) << option;
+    EXPECT_THAT(r.err, HasSubstr("do not apply")) << option;
+  }
 }
 
 TEST(Cli, CheckReadsColumnsByName) {

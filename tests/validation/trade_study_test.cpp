@@ -170,5 +170,33 @@ TEST(TradeStudyTest, FinerSelfTreesAreMeasuredAndCounted) {
   EXPECT_NE(md.str().find("Self-collision trees at 0.25"), std::string::npos);
 }
 
+// Self-pair tables from the scene options (as `--self-pair-tables on` sets them): only
+// conservative answers change, they stay free of false negatives and lose self false positives.
+TEST(TradeStudyTest, SelfPairTablesAreHonoured) {
+  TradeStudyOptions options;
+  options.scene_path = std::string(OCTOMOTION_SOURCE_DIR) + "/robots/scenes/bookshelf.yaml";
+  options.states = 400;
+  options.resolutions = {0.02};
+  options.roundings = {Rounding::kConservative};
+  options.paths = {CheckerPath::kFused};
+  options.fcl_octomap = false;
+  options.runs = 0;
+  const TradeStudyResult plain = runTradeStudy(options);
+  options.overrides.self_pair_tables = true;
+  const TradeStudyResult tabled = runTradeStudy(options);
+  EXPECT_FALSE(plain.self_pair_tables);
+  EXPECT_TRUE(tabled.self_pair_tables);
+  ASSERT_EQ(plain.checks.size(), 2u);
+  ASSERT_EQ(tabled.checks.size(), 2u);
+  const CheckRow& a = plain.checks[1];
+  const CheckRow& b = tabled.checks[1];
+  EXPECT_EQ(b.false_negatives, 0u);
+  EXPECT_LT(b.false_positives, a.false_positives);
+  EXPECT_EQ(b.env_fp_rate, a.env_fp_rate);  // the environment half is unchanged
+  std::ostringstream md;
+  writeMarkdown(tabled, md);
+  EXPECT_NE(md.str().find("Self-pair tables on"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace octomotion

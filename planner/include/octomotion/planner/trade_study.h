@@ -25,7 +25,10 @@ struct StudyPlanner {
 
 struct TradeStudyOptions {
   std::string scene_path;
-  SceneOverrides overrides;         // package paths (resolution/checker overrides are ignored)
+  // Package paths, the seed, the time limit, and the scene's octree options that apply to every
+  // setting: self_pair_tables and max_surface_voxels (they override the scene's). The settings
+  // themselves (resolution, rounding, checker, self_link_resolution) come from the fields below.
+  SceneOverrides overrides;
   std::vector<double> resolutions;  // metres; empty: defaultResolutions()
   std::vector<Rounding> roundings = {Rounding::kConservative, Rounding::kCenter};
   std::vector<CheckerPath> paths = {CheckerPath::kMoveTree, CheckerPath::kFused};
@@ -101,6 +104,7 @@ struct TradeStudyResult {
   double scene_resolution = 0;
   double link_resolution_ratio = 1.0;                // TradeStudyOptions::link_resolution_ratio
   std::optional<double> self_link_resolution_ratio;  // TradeStudyOptions::...
+  bool self_pair_tables = false;                     // the scene's octree.self_pair_tables
   std::vector<CheckRow> checks;
   std::vector<PlanRow> planning;
 };
