@@ -443,7 +443,10 @@ OctreeCollisionModel::OctreeCollisionModel(RobotModel robot, const EnvironmentGe
     const int sa = link_slot_[static_cast<std::size_t>(a)];
     const int sb = link_slot_[static_cast<std::size_t>(b)];
     if (sa < 0 || sb < 0) continue;
-    SelfPair pair{static_cast<std::size_t>(sa), static_cast<std::size_t>(sb), nullptr};
+    const double pair_reach = spheresReach(*self_voxels_[static_cast<std::size_t>(sa)],
+                                           *self_voxels_[static_cast<std::size_t>(sb)]);
+    SelfPair pair{static_cast<std::size_t>(sa), static_cast<std::size_t>(sb),
+                  pair_reach * pair_reach, nullptr};
     // 6a. The pair's joint-space table, classified on the exact geometry, when its pose depends
     // on few variables and its tree test runs often enough to be worth the build.
     const std::vector<int> vars = tables ? detail::pairVariables(robot_, a, b) : std::vector<int>{};
@@ -639,7 +642,9 @@ double OctreeCollisionModel::treeTestShare(const SelfPair& pair,
     const Eigen::Isometry3d& X_WB = data.linkPose(links_[pair.b].link);
     const Eigen::Vector3d ca_W = X_WA * a.center_L, cb_W = X_WB * b.center_L;
     const Eigen::Matrix3d R_AB = X_WA.linear().transpose() * X_WB.linear();
-    if (spheresMeet(a, ca_W, b, cb_W) && boxesMeet(a, X_WA, R_AB, b, cb_W)) ++reached;
+    if ((ca_W - cb_W).squaredNorm() <= pair.reach_squared && boxesMeet(a, X_WA, R_AB, b, cb_W)) {
+      ++reached;
+    }
   }
   return static_cast<double>(reached) / kSamples;
 }
@@ -719,10 +724,25 @@ bool OctreeCollisionModel::selfBroadPhaseInCollision(CheckerPath path,
   return hit;
 }
 
+bool OctreeCollisionModel::pairStagesHit(const SelfPair& p, CheckerPath path,
+                                         CheckScratch& scratch) const {
+  if (p.table) {
+    const JointSpaceTable::Cell cell = p.table->lookup(scratch.robot.joint_values.data());
+    if (cell != JointSpaceTable::kUnknown) return cell == JointSpaceTable::kColliding;
+  }
+  return linksHit(*self_voxels_[p.a], scratch.robot.linkPose(links_[p.a].link), *self_voxels_[p.b],
+                  scratch.robot.linkPose(links_[p.b].link), scratch.centres_W[p.b], path,
+                  scratch.fused);
+}
+
 bool OctreeCollisionModel::selfPairsInCollision(CheckerPath path, CheckScratch& scratch) const {
   placeCentres(scratch);
-  for (std::size_t i = 0; i < pairs_.size(); ++i) {
-    if (pairHits(i, path, scratch)) return true;
+  // The sphere test inline, with the centres' address held across the loop: most pairs stop
+  // there, so the loop is a few instructions per pair.
+  const Eigen::Vector3d* centres = scratch.centres_W.data();
+  for (const SelfPair& p : pairs_) {
+    if ((centres[p.a] - centres[p.b]).squaredNorm() > p.reach_squared) continue;
+    if (pairStagesHit(p, path, scratch)) return true;
   }
   return false;
 }

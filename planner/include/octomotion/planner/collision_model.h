@@ -261,12 +261,11 @@ class OctreeCollisionModel {
                                  const CollisionModelOptions& options, bool for_self_pairs);
   bool linkHitsEnvironment(const LinkTree& lt, const Eigen::Isometry3d& X_WL, CheckerPath path,
                            CollisionScratch& fused) const;
-  // The self-pair test in two stages, cheapest first. spheresMeet: the bounding spheres (centres
-  // in W from placeCentres) are close enough for B's voxels placed on A's grid to reach A.
-  static bool spheresMeet(const LinkVoxels& a, const Eigen::Vector3d& ca_W, const LinkVoxels& b,
-                          const Eigen::Vector3d& cb_W) {
-    const double reach = a.radius + b.radius + a.source_diagonal;
-    return (ca_W - cb_W).squaredNorm() <= reach * reach;
+  // The self-pair test in two stages, cheapest first. The bounding spheres (centres in W from
+  // placeCentres) are close enough for B's voxels placed on A's grid to reach A when their
+  // centres are within spheresReach of each other.
+  static double spheresReach(const LinkVoxels& a, const LinkVoxels& b) {
+    return a.radius + b.radius + a.source_diagonal;
   }
   // The boxes of A's and B's black voxels (B's rotation in A: R_AB) overlap.
   static bool boxesMeet(const LinkVoxels& a, const Eigen::Isometry3d& X_WA,
@@ -280,20 +279,12 @@ class OctreeCollisionModel {
   bool linksHit(const LinkVoxels& a, const Eigen::Isometry3d& X_WA, const LinkVoxels& b,
                 const Eigen::Isometry3d& X_WB, const Eigen::Vector3d& cb_W, CheckerPath path,
                 CollisionScratch& fused) const;
-  // Self pair `pair` (index into pairs_): the spheres (centres from placeCentres), then its
-  // joint-space table when it has one, then the boxes and trees of the self trees.
+  // Self pair `pair` (index into pairs_): the spheres (centres from placeCentres), then
+  // pairStagesHit.
   bool pairHits(std::size_t pair, CheckerPath path, CheckScratch& scratch) const {
     const SelfPair& p = pairs_[pair];
-    const LinkVoxels& a = *self_voxels_[p.a];
-    const LinkVoxels& b = *self_voxels_[p.b];
-    if (!spheresMeet(a, scratch.centres_W[p.a], b, scratch.centres_W[p.b])) return false;
-    if (p.table) {
-      const JointSpaceTable::Cell cell = p.table->lookup(scratch.robot.joint_values.data());
-      if (cell != JointSpaceTable::kUnknown) return cell == JointSpaceTable::kColliding;
-    }
-    return linksHit(a, scratch.robot.linkPose(links_[p.a].link), b,
-                    scratch.robot.linkPose(links_[p.b].link), scratch.centres_W[p.b], path,
-                    scratch.fused);
+    return (scratch.centres_W[p.a] - scratch.centres_W[p.b]).squaredNorm() <= p.reach_squared &&
+           pairStagesHit(p, path, scratch);
   }
   // scratch.centres_W[slot]: every modelled link's self-collision sphere centre.
   void placeCentres(CheckScratch& scratch) const;
@@ -318,8 +309,12 @@ class OctreeCollisionModel {
   std::vector<int> link_slot_;                  // robot link index -> index in links_, or -1
   struct SelfPair {
     std::size_t a, b;                        // slots in links_
+    double reach_squared = 0;                // spheresReach(a, b)^2
     const JointSpaceTable* table = nullptr;  // in pair_tables_, or none
   };
+  // A pair whose spheres meet: its joint-space table when it has one, then the boxes and trees
+  // of the self trees.
+  bool pairStagesHit(const SelfPair& p, CheckerPath path, CheckScratch& scratch) const;
   // Share of the pair's joint space (its variables `vars`, 256 samples) whose states reach the
   // tree test.
   double treeTestShare(const SelfPair& pair, const std::vector<int>& vars) const;
