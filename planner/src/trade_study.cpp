@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <ctime>
+#include <functional>
 #include <iomanip>
 #include <map>
 #include <memory>
@@ -148,17 +149,29 @@ double threadCpuMicros() {
   return static_cast<double>(ts.tv_sec) * 1e6 + static_cast<double>(ts.tv_nsec) * 1e-3;
 }
 
-// Three passes over the states: each check timed alone (wall clock, for the medians and the
-// 90th percentiles; includes ~20-40 ns of clock reads), then the full check and the
-// environment-only check each timed as a whole pass in thread CPU time (the means).
+// A check of state i, for timing passes that pair a setting with the reference.
+using CheckFn = std::function<bool(std::size_t)>;
+
+// Timed passes, one after the other, kTimedRounds times (the median kept) so that a burst of
+// load on the shared machine moves one round, not the result.
+constexpr int kTimedRounds = 5;
+
+// The passes over the states: each check timed alone (wall clock, for the medians and the
+// 90th percentiles; includes ~20-40 ns of clock reads), then kTimedRounds rounds of whole
+// passes in thread CPU time (the means): each round times the reference's full check (when
+// given) right before this checker's, so their ratio is taken on the same machine state; then
+// the environment-only pass. mean_us is the median of the rounds' means, speedup the median of
+// the rounds' ratios (reference / this).
 struct Measurement {
   std::vector<double> full_us;
   std::vector<bool> answers, env_answers;
   double mean_us = 0, env_mean_us = 0;
+  double speedup = 1;
 };
 
 template <class Full, class Env>
-Measurement measure(std::size_t count, const Full& full, const Env& env) {
+Measurement measure(std::size_t count, const Full& full, const Env& env,
+                    const CheckFn& reference = {}) {
   Measurement m;
   m.full_us.resize(count);
   m.answers.resize(count);
@@ -170,22 +183,37 @@ Measurement measure(std::size_t count, const Full& full, const Env& env) {
     m.full_us[i] = micros(t0, t1);
     m.answers[i] = hit;
   }
-  std::size_t hits = 0;
-  double c0 = threadCpuMicros();
-  for (std::size_t i = 0; i < count; ++i) hits += full(i) ? 1 : 0;
-  m.mean_us = (threadCpuMicros() - c0) / static_cast<double>(count);
-  c0 = threadCpuMicros();
+  const auto expected =
+      static_cast<std::size_t>(std::count(m.answers.begin(), m.answers.end(), true));
+  auto pass = [&](const auto& check) {
+    std::size_t hits = 0;
+    const double c0 = threadCpuMicros();
+    for (std::size_t i = 0; i < count; ++i) hits += check(i) ? 1 : 0;
+    const double us = (threadCpuMicros() - c0) / static_cast<double>(count);
+    return std::make_pair(us, hits);
+  };
+  std::vector<double> means, ratios;
+  for (int round = 0; round < kTimedRounds; ++round) {
+    const double reference_us = reference ? pass(reference).first : 0.0;
+    const auto [us, hits] = pass(full);
+    if (hits != expected) {
+      throw Error("trade study: a checker answered differently on the same states");
+    }
+    means.push_back(us);
+    if (reference) ratios.push_back(reference_us / us);
+  }
+  m.mean_us = percentile(means, 0.5);
+  if (reference) m.speedup = percentile(ratios, 0.5);
+  const double c0 = threadCpuMicros();
   for (std::size_t i = 0; i < count; ++i) m.env_answers[i] = env(i);
   m.env_mean_us = (threadCpuMicros() - c0) / static_cast<double>(count);
-  if (hits != static_cast<std::size_t>(std::count(m.answers.begin(), m.answers.end(), true))) {
-    throw Error("trade study: a checker answered differently on the same states");
-  }
   return m;
 }
 
 // FCL and FCL+OctoMap share the scratch API.
 template <class Model>
-Measurement measureFclLike(const Model& model, const States& states, std::size_t count) {
+Measurement measureFclLike(const Model& model, const States& states, std::size_t count,
+                           const CheckFn& reference = {}) {
   auto scratch = model.makeScratch();
   return measure(
       count,
@@ -196,11 +224,12 @@ Measurement measureFclLike(const Model& model, const States& states, std::size_t
       [&](std::size_t i) {
         model.setConfiguration(states.at(i), states.dof, states.X_WB[i], *scratch);
         return model.environmentInCollision(*scratch);
-      });
+      },
+      reference);
 }
 
 Measurement measureOctree(const OctreeCollisionModel& model, CheckerPath path, const States& states,
-                          std::size_t count) {
+                          std::size_t count, const CheckFn& reference) {
   CheckScratch scratch = model.makeScratch();
   const RobotModel& robot = model.robot();
   const bool free_flying = robot.isFreeFlying();
@@ -213,7 +242,8 @@ Measurement measureOctree(const OctreeCollisionModel& model, CheckerPath path, c
         robot.forwardKinematics(states.at(i), states.dof, scratch.robot,
                                 free_flying ? states.X_WB[i] : model.baseMount());
         return model.environmentInCollision(path, scratch);
-      });
+      },
+      reference);
 }
 
 std::vector<bool> prefix(const std::vector<bool>& v, std::size_t n) {
@@ -473,6 +503,12 @@ TradeStudyResult runTradeStudy(const TradeStudyOptions& options) {
       robot, environment, spec.robot.keep_mesh_root_transform, spec.robot.center_mesh_vertices);
   const double fcl_build = seconds(t0, Clock::now());
   const Measurement fcl_m = measureFclLike(*fcl, states, states.count);
+  // FCL's full check again, paired with every setting's timed passes (Measurement::speedup).
+  auto fcl_scratch = fcl->makeScratch();
+  const CheckFn fcl_check = [&](std::size_t i) {
+    fcl->setConfiguration(states.at(i), states.dof, states.X_WB[i], *fcl_scratch);
+    return fcl->inCollision(*fcl_scratch);
+  };
   {
     CheckRow row;
     row.scene = spec.name;
@@ -483,7 +519,6 @@ TradeStudyResult runTradeStudy(const TradeStudyOptions& options) {
     say(spec.name + ": fcl " + fmt(row.mean_us) + " us mean, " +
         std::to_string(row.colliding_states) + " colliding states");
   }
-  const double fcl_mean = result.checks.front().mean_us;
 
   std::vector<PlanSetting> plan_settings;
   // boundMotionStep's reach: the body's diagonal, or (arms) from the octree model's report.
@@ -503,7 +538,7 @@ TradeStudyResult runTradeStudy(const TradeStudyOptions& options) {
         auto octomap = std::make_shared<const FclOctomapCollisionModel>(
             robot, environment, resolution, spec.robot.keep_mesh_root_transform,
             spec.robot.center_mesh_vertices);
-        const Measurement m = measureFclLike(*octomap, states, states.count);
+        const Measurement m = measureFclLike(*octomap, states, states.count, fcl_check);
         CheckRow row;
         row.scene = spec.name;
         row.checker = "fcl-octomap";
@@ -511,7 +546,7 @@ TradeStudyResult runTradeStudy(const TradeStudyOptions& options) {
         fillRow(m, fcl_m, row);
         row.memory_bytes = octomap->octomapBytes();
         row.build_seconds = octomap->buildSeconds();
-        row.speedup_vs_fcl = fcl_mean / row.mean_us;
+        row.speedup_vs_fcl = m.speedup;
         octomap_env_mean = row.env_mean_us;
         result.checks.push_back(row);
         say(spec.name + ": " + settingName("fcl-octomap", resolution, "") + " " + fmt(row.mean_us) +
@@ -559,7 +594,7 @@ TradeStudyResult runTradeStudy(const TradeStudyOptions& options) {
         const std::size_t count = path == CheckerPath::kMoveTree && options.move_tree_states > 0
                                       ? std::min(options.move_tree_states, states.count)
                                       : states.count;
-        const Measurement m = measureOctree(*model, path, states, count);
+        const Measurement m = measureOctree(*model, path, states, count, fcl_check);
         CheckRow row;
         row.scene = spec.name;
         row.checker = checker;
@@ -568,7 +603,7 @@ TradeStudyResult runTradeStudy(const TradeStudyOptions& options) {
         fillRow(m, fcl_m, row);
         row.memory_bytes = octreeBytes(*model);
         row.build_seconds = build;
-        row.speedup_vs_fcl = fcl_mean / row.mean_us;
+        row.speedup_vs_fcl = m.speedup;
         if (octomap_env_mean > 0)
           row.env_speedup_vs_fcl_octomap = octomap_env_mean / row.env_mean_us;
         result.checks.push_back(row);

@@ -68,7 +68,7 @@ struct CheckRow {
   double resolution = 0;  // metres; 0 for fcl
   std::string rounding;   // conservative | center; empty for fcl and fcl-octomap
   std::size_t states = 0, free_states = 0, colliding_states = 0;
-  double mean_us = 0;  // full check (environment and self-collision)
+  double mean_us = 0;  // full check (environment and self-collision); median of 5 timed passes
   double median_free_us = 0, p90_free_us = 0;
   double median_colliding_us = 0, p90_colliding_us = 0;
   double env_mean_us = -1;          // environment only; -1 when the checker cannot split it
@@ -81,7 +81,10 @@ struct CheckRow {
   double env_fp_rate = -1, env_fn_rate = -1;
   std::size_t memory_bytes = 0;  // octree: environment + link source trees; 0 if unknown
   double build_seconds = 0;
-  double speedup_vs_fcl = 1;               // FCL's mean full-check time / this one's
+  // FCL's full-check time / this one's: the median over 5 rounds of a timed FCL pass over the
+  // same states right before this checker's pass (so both see the same machine load); it can
+  // differ a little from the ratio of the two mean_us, each a median over its own rounds.
+  double speedup_vs_fcl = 1;
   double env_speedup_vs_fcl_octomap = -1;  // FCL+OctoMap's environment-only mean at the same
                                            // resolution / this one's; -1 when not measured
 };
