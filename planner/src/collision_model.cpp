@@ -37,6 +37,13 @@ constexpr int kSphereLevel = 3;
 // across the link's longest side (time and memory stay those of a 256^3 surface).
 constexpr double kOracleVoxelsAcross = 256;
 
+// A value uniform in the variable's range from the top 53 bits of one draw: the same sequence on
+// every standard library (unlike std::uniform_real_distribution), so build-time samples are.
+double uniformIn(const Variable& var, std::mt19937_64& rng) {
+  const double u = static_cast<double>(rng() >> 11) * 0x1.0p-53;
+  return var.lower + u * (var.upper - var.lower);
+}
+
 double distanceToBox(const Eigen::Vector3d& p, const Eigen::AlignedBox3d& box) {
   return (p - p.cwiseMax(box.min()).cwiseMin(box.max())).norm();
 }
@@ -594,12 +601,7 @@ void OctreeCollisionModel::orderEnvironmentLinks() {
     CollisionScratch fused;
     std::mt19937_64 rng(2);
     for (int i = 0; i < kEnvironmentOrderSamples; ++i) {
-      for (std::size_t v = 0; v < q.size(); ++v) {
-        const Variable& var = robot_.variables()[v];
-        // Top 53 bits as a double in [0, 1): the same on every standard library.
-        const double u = static_cast<double>(rng() >> 11) * 0x1.0p-53;
-        q[v] = var.lower + u * (var.upper - var.lower);
-      }
+      for (std::size_t v = 0; v < q.size(); ++v) q[v] = uniformIn(robot_.variables()[v], rng);
       robot_.forwardKinematics(q.data(), q.size(), data, options_.X_WB);
       for (const std::size_t slot : order) {
         const LinkTree& lt = links_[slot];
@@ -632,10 +634,8 @@ double OctreeCollisionModel::treeTestShare(const SelfPair& pair,
   const LinkVoxels& b = *self_voxels_[pair.b];
   for (int i = 0; i < kSamples; ++i) {
     for (int v : vars) {
-      const Variable& var = robot_.variables()[static_cast<std::size_t>(v)];
-      // Top 53 bits as a double in [0, 1): the same on every standard library.
-      const double u = static_cast<double>(rng() >> 11) * 0x1.0p-53;
-      q[static_cast<std::size_t>(v)] = var.lower + u * (var.upper - var.lower);
+      const auto var = static_cast<std::size_t>(v);
+      q[var] = uniformIn(robot_.variables()[var], rng);
     }
     robot_.forwardKinematics(q.data(), q.size(), data);
     const Eigen::Isometry3d& X_WA = data.linkPose(links_[pair.a].link);
