@@ -4,8 +4,9 @@
 Reads the study's checks.csv and planning.csv (runTradeStudy's output, kCheckCsvColumns) and
 prints, for every scene: FCL's reference line, one row per resolution comparing the fused
 conservative octree with FCL and FCL+OctoMap (and the fused centre-rounding octree), and the
-planning results. Numbers are printed as measured (3 significant digits); nothing is computed but
-ratios of measured means.
+planning results. Numbers are printed as measured (3 significant digits), the ratios too: FCL /
+octree is the study's paired ratio (speedup_vs_fcl, FCL timed right before each pass), FCL+OctoMap
+env / octree env its env_speedup_vs_fcl_octomap.
 
 usage: scripts/tradeoff_summary.py STUDY_DIR [IMAGE_PREFIX]   (IMAGE_PREFIX default: trade-off/)
 """
@@ -68,10 +69,10 @@ def main():
             cells = [label(res),
                      f"{g(oc['mean_us'])} ({g(oc['env_mean_us'])})",
                      f"{pct(oc['fp_rate'])} ({pct(oc['env_fp_rate'])})",
-                     g(float(fcl["mean_us"]) / float(oc["mean_us"]))]
+                     g(oc["speedup_vs_fcl"])]
             if om:
                 cells += [f"{g(om['mean_us'])} ({g(om['env_mean_us'])})", pct(om["fp_rate"]),
-                          g(float(om["env_mean_us"]) / float(oc["env_mean_us"]))]
+                          g(oc["env_speedup_vs_fcl_octomap"])]
             else:
                 cells += ["–", "–", "–"]
             cells += [g(ce["mean_us"]), f"{pct(ce['fp_rate'])} / {pct(ce['fn_rate'])}"] if ce \

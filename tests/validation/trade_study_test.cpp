@@ -192,7 +192,8 @@ TEST(TradeStudyTest, SelfPairTablesAreHonoured) {
   const CheckRow& b = tabled.checks[1];
   EXPECT_EQ(b.false_negatives, 0u);
   EXPECT_LT(b.false_positives, a.false_positives);
-  EXPECT_EQ(b.env_fp_rate, a.env_fp_rate);  // the environment half is unchanged
+  EXPECT_EQ(b.env_fp_rate, a.env_fp_rate);    // the environment half is unchanged
+  EXPECT_GT(b.memory_bytes, a.memory_bytes);  // the tables are counted
   std::ostringstream md;
   writeMarkdown(tabled, md);
   EXPECT_NE(md.str().find("Self-pair tables on"), std::string::npos);

@@ -79,7 +79,8 @@ struct CheckRow {
   // The environment-only answers against FCL's environment-only answers (the split of the
   // errors between the environment and self-collision); -1 when not measured.
   double env_fp_rate = -1, env_fn_rate = -1;
-  std::size_t memory_bytes = 0;  // octree: environment + link source trees; 0 if unknown
+  std::size_t memory_bytes =
+      0;  // octree: environment, link and self trees, pair tables; 0 if unknown
   double build_seconds = 0;
   // FCL's full-check time / this one's: the median over 5 rounds of a timed FCL pass over the
   // same states right before this checker's pass (so both see the same machine load); it can
