@@ -642,7 +642,7 @@ double OctreeCollisionModel::treeTestShare(const SelfPair& pair,
     const Eigen::Isometry3d& X_WB = data.linkPose(links_[pair.b].link);
     const Eigen::Vector3d ca_W = X_WA * a.center_L, cb_W = X_WB * b.center_L;
     const Eigen::Matrix3d R_AB = X_WA.linear().transpose() * X_WB.linear();
-    if ((ca_W - cb_W).squaredNorm() <= pair.reach_squared && boxesMeet(a, X_WA, R_AB, b, cb_W)) {
+    if (spheresMeet(pair, ca_W, cb_W) && boxesMeet(a, X_WA, R_AB, b, cb_W)) {
       ++reached;
     }
   }
@@ -741,8 +741,7 @@ bool OctreeCollisionModel::selfPairsInCollision(CheckerPath path, CheckScratch& 
   // there, so the loop is a few instructions per pair.
   const Eigen::Vector3d* centres = scratch.centres_W.data();
   for (const SelfPair& p : pairs_) {
-    if ((centres[p.a] - centres[p.b]).squaredNorm() > p.reach_squared) continue;
-    if (pairStagesHit(p, path, scratch)) return true;
+    if (spheresMeet(p, centres[p.a], centres[p.b]) && pairStagesHit(p, path, scratch)) return true;
   }
   return false;
 }

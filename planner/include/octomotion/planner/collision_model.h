@@ -283,7 +283,7 @@ class OctreeCollisionModel {
   // pairStagesHit.
   bool pairHits(std::size_t pair, CheckerPath path, CheckScratch& scratch) const {
     const SelfPair& p = pairs_[pair];
-    return (scratch.centres_W[p.a] - scratch.centres_W[p.b]).squaredNorm() <= p.reach_squared &&
+    return spheresMeet(p, scratch.centres_W[p.a], scratch.centres_W[p.b]) &&
            pairStagesHit(p, path, scratch);
   }
   // scratch.centres_W[slot]: every modelled link's self-collision sphere centre.
@@ -312,6 +312,11 @@ class OctreeCollisionModel {
     double reach_squared = 0;                // spheresReach(a, b)^2
     const JointSpaceTable* table = nullptr;  // in pair_tables_, or none
   };
+  // The pair's bounding spheres, centred at ca_W and cb_W, are within reach of each other.
+  static bool spheresMeet(const SelfPair& p, const Eigen::Vector3d& ca_W,
+                          const Eigen::Vector3d& cb_W) {
+    return (ca_W - cb_W).squaredNorm() <= p.reach_squared;
+  }
   // A pair whose spheres meet: its joint-space table when it has one, then the boxes and trees
   // of the self trees.
   bool pairStagesHit(const SelfPair& p, CheckerPath path, CheckScratch& scratch) const;
