@@ -143,10 +143,8 @@ TEST(TradeStudyTest, ConservativeSettingsHaveNoFalseNegatives) {
   EXPECT_NE(md.str().find("Targets for narrow_passage"), std::string::npos);
 }
 
-// An arm with finer self-collision trees: the setting is named in the markdown, counts their
-// memory, and keeps every conservative row free of false negatives; the finer self trees clear
-// self false positives of the same states.
-TEST(TradeStudyTest, FinerSelfTreesAreMeasuredAndCounted) {
+// A small arm study: bookshelf, 400 states, the fused conservative octree at 2 cm against FCL.
+TradeStudyOptions bookshelfFusedConservative() {
   TradeStudyOptions options;
   options.scene_path = std::string(OCTOMOTION_SOURCE_DIR) + "/robots/scenes/bookshelf.yaml";
   options.states = 400;
@@ -155,6 +153,14 @@ TEST(TradeStudyTest, FinerSelfTreesAreMeasuredAndCounted) {
   options.paths = {CheckerPath::kFused};
   options.fcl_octomap = false;
   options.runs = 0;
+  return options;
+}
+
+// An arm with finer self-collision trees: the setting is named in the markdown, counts their
+// memory, and keeps every conservative row free of false negatives; the finer self trees clear
+// self false positives of the same states.
+TEST(TradeStudyTest, FinerSelfTreesAreMeasuredAndCounted) {
+  TradeStudyOptions options = bookshelfFusedConservative();
   const TradeStudyResult same = runTradeStudy(options);
   options.self_link_resolution_ratio = 0.25;
   const TradeStudyResult finer = runTradeStudy(options);
@@ -173,14 +179,7 @@ TEST(TradeStudyTest, FinerSelfTreesAreMeasuredAndCounted) {
 // Self-pair tables from the scene options (as `--self-pair-tables on` sets them): only
 // conservative answers change, they stay free of false negatives and lose self false positives.
 TEST(TradeStudyTest, SelfPairTablesAreHonoured) {
-  TradeStudyOptions options;
-  options.scene_path = std::string(OCTOMOTION_SOURCE_DIR) + "/robots/scenes/bookshelf.yaml";
-  options.states = 400;
-  options.resolutions = {0.02};
-  options.roundings = {Rounding::kConservative};
-  options.paths = {CheckerPath::kFused};
-  options.fcl_octomap = false;
-  options.runs = 0;
+  TradeStudyOptions options = bookshelfFusedConservative();
   const TradeStudyResult plain = runTradeStudy(options);
   options.overrides.self_pair_tables = true;
   const TradeStudyResult tabled = runTradeStudy(options);
