@@ -18,10 +18,12 @@ using Node = MovableSource::Node;
 struct IntBox {
   std::uint32_t lo[3], hi[3];
   bool empty;
+  double voxels;  // black voxels under the node
 };
 
 // Tight box of the black voxels under node i (bottom-up); fills the node geometry.
-IntBox fillNode(const Octree& t, std::vector<Node>& out, std::uint32_t i, const Cube& cube) {
+IntBox fillNode(const Octree& t, std::vector<Node>& out, std::uint32_t i, const Cube& cube,
+                double expand_factor) {
   const OctreeNode& n = t.nodes()[i];
   Node& m = out[i];
   m.first_child = n.first_child;
@@ -29,9 +31,10 @@ IntBox fillNode(const Octree& t, std::vector<Node>& out, std::uint32_t i, const 
   m.gray = n.gray;
   m.level = static_cast<std::int8_t>(cube.level);
   m.origin = cube.origin;
-  IntBox box{{0xffffffffu, 0xffffffffu, 0xffffffffu}, {0, 0, 0}, true};
+  IntBox box{{0xffffffffu, 0xffffffffu, 0xffffffffu}, {0, 0, 0}, true, 0.0};
   auto grow = [&box](const IntBox& c) {
     if (c.empty) return;
+    box.voxels += c.voxels;
     for (int a = 0; a < 3; ++a) {
       box.lo[a] = box.empty ? c.lo[a] : std::min(box.lo[a], c.lo[a]);
       box.hi[a] = box.empty ? c.hi[a] : std::max(box.hi[a], c.hi[a]);
@@ -42,19 +45,27 @@ IntBox fillNode(const Octree& t, std::vector<Node>& out, std::uint32_t i, const 
     const Cube c = cube.child(k);
     if (n.black & (1u << k)) {
       const std::uint32_t s = c.side() - 1;
+      const double side = static_cast<double>(c.side());
       grow({{c.origin.x, c.origin.y, c.origin.z},
             {c.origin.x + s, c.origin.y + s, c.origin.z + s},
-            false});
+            false,
+            side * side * side});
     } else if (n.gray & (1u << k)) {
-      grow(fillNode(t, out, n.childIndex(k), c));
+      grow(fillNode(t, out, n.childIndex(k), c, expand_factor));
     }
   }
+  double volume = 1.0;
   for (int a = 0; a < 3; ++a) {  // `out` is never resized, so `m` is still valid
     const double lo = static_cast<double>(box.lo[a]);
     const double hi = static_cast<double>(box.hi[a]) + 1.0;
     m.centre[a] = 0.5 * (lo + hi);
     m.half[a] = 0.5 * (hi - lo);
+    volume *= hi - lo;
   }
+  const double expand = box.voxels < MovableSource::kSparseFill * volume
+                            ? std::min(expand_factor, MovableSource::kExpandFactorSparse)
+                            : expand_factor;
+  m.split_half = std::max(m.half[0], std::max(m.half[1], m.half[2])) / expand;
   return box;
 }
 
@@ -62,7 +73,7 @@ constexpr std::size_t kCoreLeaves = 3;
 
 class Query {
  public:
-  Query(const MotionFrame& f, const MovableSource& src, const Octree& env, Rounding rounding,
+  Query(MotionFrame& f, const MovableSource& src, const Octree& env, Rounding rounding,
         CollisionScratch& scratch, Cube* witness)
       : f_(f),
         nodes_(src.nodes().data()),
@@ -73,8 +84,7 @@ class Query {
         margin_(motion_detail::rejectMargin(rounding)),
         scratch_(scratch),
         witness_(witness),
-        core_(src.coreLeaves()),
-        expand_factor_(src.expandFactor()) {}
+        core_(src.coreLeaves()) {}
 
   bool run() {
     if (env_root_ == Color::kWhite) return false;
@@ -306,6 +316,7 @@ class Query {
       it.rs[a] = f_.s * n.half[a];
       it.rt[a] = f_.absA[a][0] * n.half[0] + f_.absA[a][1] * n.half[1] + f_.absA[a][2] * n.half[2];
     }
+    it.split = f_.s * n.split_half;
     it.node = i;
     it.leaf = -1;
     it.level = n.level;
@@ -324,6 +335,7 @@ class Query {
       it.rs[a] = hs;
       it.rt[a] = hs * f_.rowsum[a];
     }
+    it.split = 0.0;  // leaves are never split
     it.node = i;
     it.leaf = static_cast<std::int8_t>(k);
     it.level = static_cast<std::int8_t>(cube.level);
@@ -353,8 +365,7 @@ class Query {
   // Pushes a piece known to reach `cell`; a gray source node larger than the cell is replaced
   // by its children that reach it (the source side of the parallel descent).
   void pushRefined(const CollisionItem& it, const Cube& cell) {
-    const double half = motion_detail::halfSide(cell.level);
-    if (it.leaf >= 0 || std::max(it.rs[0], std::max(it.rs[1], it.rs[2])) <= expand_factor_ * half) {
+    if (it.leaf >= 0 || it.split <= motion_detail::halfSide(cell.level)) {
       out_->push_back(it);
       return;
     }
@@ -415,6 +426,18 @@ class Query {
     return true;
   }
 
+  // Conservative rounding accepts a voxel that holds the moved cube's centre g, whatever the
+  // rotation: on every separating axis the voxel's half-projection already covers the offset of
+  // g, and the cube adds at least hs (the edge axes' cS is >= 1), far above the tie tolerance.
+  // The shortcut skips the 15-axis test (and forming the edge axes) for most hits.
+  bool inside(const Voxel& v, const double g[3], double hs) const {
+    return rounding_ == Rounding::kConservative && hs >= kInsideMinHalf &&
+           static_cast<double>(v.x) <= g[0] && g[0] < static_cast<double>(v.x) + 1.0 &&
+           static_cast<double>(v.y) <= g[1] && g[1] < static_cast<double>(v.y) + 1.0 &&
+           static_cast<double>(v.z) <= g[2] && g[2] < static_cast<double>(v.z) + 1.0;
+  }
+  static constexpr double kInsideMinHalf = 1e-3;  // >> kMotionTieTolerance and rounding noise
+
   // Tries the voxel of `cell` nearest to the moved leaf's centre.
   bool probe(const CollisionItem& leaf, const Cube& cell) {
     return probe(leaf.g, leaf.rs[0], cell);
@@ -428,12 +451,15 @@ class Query {
       v[a] = o[a] + static_cast<std::uint32_t>(std::min(top, std::max(0.0, r)));
     }
     const Voxel voxel{v[0], v[1], v[2]};
-    if (!motion_detail::voxelAccepts(f_, rounding_, voxel, g, hs)) return false;
+    if (!inside(voxel, g, hs)) {
+      if (f_.n_cross < 0 && rounding_ == Rounding::kConservative) motion_detail::addEdgeAxes(f_);
+      if (!motion_detail::voxelAccepts(f_, rounding_, voxel, g, hs)) return false;
+    }
     if (witness_) *witness_ = Cube{0, voxel};
     return true;
   }
 
-  const MotionFrame& f_;
+  MotionFrame& f_;  // its edge axes are added at the first probe that needs them
   const Node* nodes_;
   const OctreeNode* env_;
   Color env_root_;
@@ -443,7 +469,6 @@ class Query {
   CollisionScratch& scratch_;
   Cube* witness_;
   const std::vector<Cube>& core_;
-  double expand_factor_;
   std::vector<CollisionItem>* out_ = nullptr;
 };
 
@@ -454,7 +479,7 @@ MovableSource::MovableSource(const Octree& source, double expand_factor)
   if (!(expand_factor >= 1)) throw InvalidArgument("MovableSource: expand_factor must be >= 1");
   if (root_ == Color::kGray) {
     nodes_.resize(source.nodes().size());
-    fillNode(source, nodes_, 0, grid_.universe());
+    fillNode(source, nodes_, 0, grid_.universe(), expand_factor);
   } else if (root_ == Color::kBlack) {
     // A virtual parent one level above the universe whose child 0 is the black universe, so
     // the query handles every source the same way.
@@ -462,6 +487,7 @@ MovableSource::MovableSource(const Octree& source, double expand_factor)
     Node n{};
     n.centre[0] = n.centre[1] = n.centre[2] = h;
     n.half[0] = n.half[1] = n.half[2] = h;
+    n.split_half = h / expand_factor;
     n.black = 1;
     n.level = static_cast<std::int8_t>(grid_.depth() + 1);
     nodes_.push_back(n);
@@ -497,8 +523,8 @@ MovableSource::MovableSource(const Octree& source, double expand_factor)
 
 bool collides(const MovableSource& source, const Eigen::Isometry3d& X_WS, const Octree& environment,
               Rounding rounding, CollisionScratch& scratch, Cube* witness) {
-  const MotionFrame f =
-      motion_detail::makeMotionFrame(X_WS, source.grid(), environment.grid(), rounding, "collides");
+  MotionFrame f =
+      motion_detail::makeMotionFrame(X_WS, source.grid(), environment.grid(), "collides");
   if (source.rootColor() == Color::kWhite) return false;
   Query q(f, source, environment, rounding, scratch, witness);
   return q.run();

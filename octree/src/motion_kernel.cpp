@@ -7,7 +7,7 @@
 namespace octomotion::motion_detail {
 
 MotionFrame makeMotionFrame(const Eigen::Isometry3d& X_WS, const WorldGrid& source,
-                            const WorldGrid& target, Rounding rounding, const char* what) {
+                            const WorldGrid& target, const char* what) {
   const Eigen::Matrix3d R = validatedRotation(X_WS, what);
   const Eigen::Vector3d T = X_WS.translation();
   MotionFrame f;  // every field is written below (cross[] up to n_cross)
@@ -34,28 +34,32 @@ MotionFrame makeMotionFrame(const Eigen::Isometry3d& X_WS, const WorldGrid& sour
       f.colsum[j] += std::fabs(R(i, j));
     }
   }
+  f.n_cross = -1;
+  f.side = static_cast<double>(target.sideVoxels());
+  return f;
+}
+
+void addEdgeAxes(MotionFrame& f) {
+  constexpr int kNext[3] = {1, 2, 0}, kPrev[3] = {2, 0, 1};
   f.n_cross = 0;
-  for (int i = 0; i < 3 && rounding == Rounding::kConservative; ++i) {
+  for (int i = 0; i < 3; ++i) {
+    const int i1 = kNext[i], i2 = kPrev[i];
     for (int j = 0; j < 3; ++j) {
       // L = e_i x R_j, written out: component i is 0, the other two are R_j's, rotated.
-      const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
-      const double n2 = R(i1, j) * R(i1, j) + R(i2, j) * R(i2, j);
+      const double n2 = f.R[i1][j] * f.R[i1][j] + f.R[i2][j] * f.R[i2][j];
       if (n2 < 1e-12) continue;  // |L| < 1e-6: edges (nearly) parallel
       const double inv = 1.0 / std::sqrt(n2);
       MotionFrame::Axis& ax = f.cross[f.n_cross++];
       ax.L[i] = 0.0;
-      ax.L[i1] = -R(i2, j) * inv;
-      ax.L[i2] = R(i1, j) * inv;
+      ax.L[i1] = -f.R[i2][j] * inv;
+      ax.L[i2] = f.R[i1][j] * inv;
       ax.rV = 0.5 * (std::fabs(ax.L[i1]) + std::fabs(ax.L[i2]));
-      // |u . R_k| over the columns; u . R_j is 0 (to the 1e-14 of snappedRotation).
-      ax.cS = 0;
-      for (const int k : {(j + 1) % 3, (j + 2) % 3}) {
-        ax.cS += std::fabs(ax.L[i1] * R(i1, k) + ax.L[i2] * R(i2, k));
-      }
+      // |u . R_k| over the other two columns; u . R_j is 0 (to the 1e-14 of snappedRotation).
+      const int k1 = kNext[j], k2 = kPrev[j];
+      ax.cS = std::fabs(ax.L[i1] * f.R[i1][k1] + ax.L[i2] * f.R[i2][k1]) +
+              std::fabs(ax.L[i1] * f.R[i1][k2] + ax.L[i2] * f.R[i2][k2]);
     }
   }
-  f.side = static_cast<double>(target.sideVoxels());
-  return f;
 }
 
 }  // namespace octomotion::motion_detail

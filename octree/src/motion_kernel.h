@@ -34,7 +34,7 @@ struct MotionFrame {
   double colsum[3];   // sum_i |R_ij|: half-extent on source axis j of an upright cube of half 1
   // The nine edge-edge axes e_i x R_j of the separating-axis test, unit length; axes shorter
   // than 1e-6 before normalisation (edges parallel, e.g. 90° rotations) are skipped: the face
-  // axes then decide.
+  // axes then decide. Filled by addEdgeAxes (n_cross < 0 until then).
   struct Axis {
     double L[3];
     double rV;  // half-projection of a unit target voxel
@@ -45,10 +45,13 @@ struct MotionFrame {
   double side;  // target universe side, voxels
 };
 
-// Validates the pose (throws InvalidArgument naming `what`). The edge axes are only computed
-// for conservative rounding (the centre rule does not use them).
+// Validates the pose (throws InvalidArgument naming `what`). Without the edge axes (n_cross = -1):
+// conservative voxelAccepts needs addEdgeAxes first. collides adds them at its first probe, as
+// most near-miss queries never probe a voxel; moveTree adds them at once.
 MotionFrame makeMotionFrame(const Eigen::Isometry3d& X_WS, const WorldGrid& source,
-                            const WorldGrid& target, Rounding rounding, const char* what);
+                            const WorldGrid& target, const char* what);
+// Fills the edge axes (same values whenever called).
+void addEdgeAxes(MotionFrame& f);
 
 // Half the side of a cube of `level` (0 <= level <= kMaxDepth + 1), exactly.
 inline double halfSide(int level) {
@@ -99,6 +102,7 @@ inline bool voxelAccepts(const MotionFrame& f, Rounding rounding, const Voxel& v
     const double q = f.R[0][j] * d[0] + f.R[1][j] * d[1] + f.R[2][j] * d[2];
     if (!(std::fabs(q) < 0.5 * f.colsum[j] + hs - tol)) return false;
   }
+  // The edge axes must have been added (n_cross >= 0; see makeMotionFrame).
   for (int a = 0; a < f.n_cross; ++a) {
     const MotionFrame::Axis& ax = f.cross[a];
     const double p = ax.L[0] * d[0] + ax.L[1] * d[1] + ax.L[2] * d[2];

@@ -155,8 +155,8 @@ class Inserter {
 
 Octree moveTree(const Octree& source, const Eigen::Isometry3d& X_WS, const WorldGrid& target_grid,
                 Rounding rounding, MoveStats* stats) {
-  const MotionFrame f =
-      motion_detail::makeMotionFrame(X_WS, source.grid(), target_grid, rounding, "moveTree");
+  MotionFrame f = motion_detail::makeMotionFrame(X_WS, source.grid(), target_grid, "moveTree");
+  if (rounding == Rounding::kConservative) motion_detail::addEdgeAxes(f);
   OctreeBuilder builder(target_grid);
   Inserter inserter(f, builder, rounding);
   // fdleaf: every black leaf of the source, in depth-first label order.

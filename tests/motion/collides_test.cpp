@@ -221,6 +221,50 @@ TEST(Collides, AnswerDoesNotDependOnExpandFactor) {
   EXPECT_LT(hits, compared * 9 / 10);
 }
 
+// A node whose black voxels fill less than kSparseFill of its box (an L of two thin bars) is
+// split at kExpandFactorSparse; a solid one keeps the source's factor. Either way the answer is
+// moveTree + intersects'.
+TEST(Collides, SparseNodesSplitSooner) {
+  const WorldGrid link_grid(Eigen::Vector3d::Constant(-0.32), 0.01, 6);
+  auto bar = [&](const Eigen::Vector3d& size, const Eigen::Vector3d& at) {
+    return voxelize(link_grid, Box{size}, Eigen::Isometry3d(Eigen::Translation3d(at)),
+                    Rounding::kConservative);
+  };
+  const Octree l_bar =
+      unite(bar({0.4, 0.04, 0.04}, {0.0, -0.18, 0.0}), bar({0.04, 0.4, 0.04}, {-0.18, 0.0, 0.0}));
+  const Octree block = bar({0.3, 0.2, 0.1}, Eigen::Vector3d::Zero());
+  auto maxHalf = [](const MovableSource::Node& n) {
+    return std::max(n.half[0], std::max(n.half[1], n.half[2]));
+  };
+  const MovableSource sparse(l_bar), solid(block);
+  EXPECT_DOUBLE_EQ(sparse.nodes()[0].split_half,
+                   maxHalf(sparse.nodes()[0]) / MovableSource::kExpandFactorSparse);
+  EXPECT_DOUBLE_EQ(solid.nodes()[0].split_half,
+                   maxHalf(solid.nodes()[0]) / MovableSource::kExpandFactorDefault);
+  // A source factor below the sparse one is kept.
+  const MovableSource eager(l_bar, 1.0);
+  EXPECT_DOUBLE_EQ(eager.nodes()[0].split_half, maxHalf(eager.nodes()[0]));
+
+  std::mt19937_64 rng(0x15a);
+  const WorldGrid grid(Eigen::Vector3d(-0.64, -0.64, -0.64), 0.01, 7);
+  const Octree env = clutter(grid, rng, 1);
+  std::uniform_real_distribution<double> pos(-0.4, 0.4);
+  CollisionScratch scratch;
+  int hits = 0, compared = 0;
+  for (int p = 0; p < 200; ++p) {
+    const Eigen::Isometry3d X = test::randomPoseAbout(
+        rng, Eigen::Vector3d::Zero(), Eigen::Vector3d(pos(rng), pos(rng), pos(rng)));
+    for (Rounding mode : kModes) {
+      const bool expect = intersects(moveTree(l_bar, X, grid, mode), env);
+      ASSERT_EQ(collides(sparse, X, env, mode, scratch), expect) << "pose " << p;
+      hits += expect;
+      ++compared;
+    }
+  }
+  EXPECT_GT(hits, compared / 20);
+  EXPECT_LT(hits, compared * 19 / 20);
+}
+
 TEST(Collides, ConvenienceFormAndSpecialTrees) {
   std::mt19937_64 rng(5);
   const WorldGrid grid(Eigen::Vector3d::Zero(), 0.05, 5);
