@@ -44,8 +44,12 @@ double uniformIn(const Variable& var, std::mt19937_64& rng) {
   return var.lower + u * (var.upper - var.lower);
 }
 
+double squaredDistanceToBox(const Eigen::Vector3d& p, const Eigen::AlignedBox3d& box) {
+  return (p - p.cwiseMax(box.min()).cwiseMin(box.max())).squaredNorm();
+}
+
 double distanceToBox(const Eigen::Vector3d& p, const Eigen::AlignedBox3d& box) {
-  return (p - p.cwiseMax(box.min()).cwiseMin(box.max())).norm();
+  return std::sqrt(squaredDistanceToBox(p, box));
 }
 
 // Distance from p to the nearest black voxel of `tree`, or +inf when there is none closer than
@@ -556,14 +560,24 @@ bool OctreeCollisionModel::linkHitsEnvironment(const LinkTree& lt, const Eigen::
   const LinkVoxels& v = lt.voxels;
   const Eigen::Vector3d c_W = X_WL * v.center_L;
   const double reach = v.radius + std::sqrt(3.0) * environment_.grid().voxelSize();
-  if (distanceToBox(c_W, environment_box_W_) > reach) return false;
+  const double reach2 = reach * reach;
+  if (squaredDistanceToBox(c_W, environment_box_W_) > reach2) return false;
   // Then the box of the link's black voxels, oriented with the link: a link voxel can only meet
   // an environment voxel inside the environment's (or an object's) box. The margin, a millionth
   // of a voxel, is the overlap the colour rule itself demands (kMotionTieTolerance).
   const double margin = kMotionTieTolerance * environment_.grid().voxelSize();
   const Eigen::Matrix3d& R_WL = X_WL.linear();
+  // The link box's half extents along the world axes (with boxesOverlap's 1e-12 padding): its
+  // first three axes, tested on their own first, reject most object boxes without the other
+  // twelve or the sphere's distance.
+  const Eigen::Vector3d h_W = (R_WL.cwiseAbs().array() + 1e-12).matrix() * v.half_L;
   auto boxNear = [&](const Eigen::AlignedBox3d& box) {
-    return distanceToBox(c_W, box) <= reach &&
+    for (int a = 0; a < 3; ++a) {
+      const double centre = 0.5 * (box.min()[a] + box.max()[a]);
+      const double half = 0.5 * (box.max()[a] - box.min()[a]);
+      if (std::fabs(c_W[a] - centre) > half + h_W[a] + margin) return false;
+    }
+    return squaredDistanceToBox(c_W, box) <= reach2 &&
            boxesOverlap(box.center(), box.sizes() / 2, R_WL, c_W, v.half_L, margin);
   };
   if (object_boxes_W_.empty()) {

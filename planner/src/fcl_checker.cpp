@@ -175,7 +175,7 @@ FclThreadScratch& fclScratch(const FclCollisionModel& model) {
 
 FclValidityChecker::FclValidityChecker(const ompl::base::SpaceInformationPtr& si,
                                        std::shared_ptr<const FclCollisionModel> model)
-    : ompl::base::StateValidityChecker(si), model_(std::move(model)) {
+    : ompl::base::StateValidityChecker(si), model_(std::move(model)), in_bounds_(si) {
   specs_.clearanceComputationType = ompl::base::StateValidityCheckerSpecs::EXACT;
 }
 
@@ -184,7 +184,7 @@ FclValidityChecker::~FclValidityChecker() = default;
 bool FclValidityChecker::isValid(const ompl::base::State* state) const {
   try {
     FclThreadScratch& t = fclScratch(*model_);
-    if (!si_->satisfiesBounds(state)) return false;
+    if (!in_bounds_(state)) return false;
     if (!stateToConfiguration(model_->robot(), state, t.q, t.X_WB)) return false;
     model_->setConfiguration(t.q.data(), t.q.size(), t.X_WB, *t.scratch);
     return !model_->inCollision(*t.scratch);

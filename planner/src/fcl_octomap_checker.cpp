@@ -111,14 +111,14 @@ OctomapThreadScratch& octomapScratch(const FclOctomapCollisionModel& model) {
 FclOctomapValidityChecker::FclOctomapValidityChecker(
     const ompl::base::SpaceInformationPtr& si,
     std::shared_ptr<const FclOctomapCollisionModel> model)
-    : ompl::base::StateValidityChecker(si), model_(std::move(model)) {}
+    : ompl::base::StateValidityChecker(si), model_(std::move(model)), in_bounds_(si) {}
 
 FclOctomapValidityChecker::~FclOctomapValidityChecker() = default;
 
 bool FclOctomapValidityChecker::isValid(const ompl::base::State* state) const {
   try {
     OctomapThreadScratch& t = octomapScratch(*model_);
-    if (!si_->satisfiesBounds(state)) return false;
+    if (!in_bounds_(state)) return false;
     if (!stateToConfiguration(model_->robot(), state, t.q, t.X_WB)) return false;
     model_->setConfiguration(t.q.data(), t.q.size(), t.X_WB, *t.scratch);
     return !model_->inCollision(*t.scratch);

@@ -1,6 +1,8 @@
 #include "octomotion/planner/octree_validity_checker.h"
 
 #include <cmath>
+#include <limits>
+#include <typeinfo>
 
 #include <ompl/base/spaces/RealVectorStateSpace.h>
 #include <ompl/base/spaces/SE3StateSpace.h>
@@ -79,6 +81,50 @@ bool stateToConfiguration(const RobotModel& robot, const ob::State* state, std::
   return true;
 }
 
+namespace {
+
+// OMPL's rules (RealVectorStateSpace::satisfiesBounds, SO3StateSpace::satisfiesBounds).
+bool withinBounds(const double* values, const ob::RealVectorBounds& bounds) {
+  constexpr double eps = std::numeric_limits<double>::epsilon();
+  for (std::size_t i = 0; i < bounds.low.size(); ++i) {
+    if (values[i] - eps > bounds.high[i] || values[i] + eps < bounds.low[i]) return false;
+  }
+  return true;
+}
+
+bool unitQuaternion(const ob::SO3StateSpace::StateType& r) {
+  constexpr double kMaxNormError = 1e-9;  // OMPL's MAX_QUATERNION_NORM_ERROR
+  const double n2 = r.x * r.x + r.y * r.y + r.z * r.z + r.w * r.w;
+  const double norm =
+      std::fabs(n2 - 1.0) > std::numeric_limits<double>::epsilon() ? std::sqrt(n2) : 1.0;
+  return std::fabs(norm - 1.0) < kMaxNormError;
+}
+
+}  // namespace
+
+BoundsCheck::BoundsCheck(const ob::SpaceInformationPtr& si) : si_(si.get()) {
+  const ob::StateSpace* space = si->getStateSpace().get();
+  if (typeid(*space) == typeid(ob::SE3StateSpace)) {
+    position_ = static_cast<const ob::SE3StateSpace*>(space)->as<ob::RealVectorStateSpace>(0);
+  } else if (typeid(*space) == typeid(ob::RealVectorStateSpace)) {
+    joints_ = static_cast<const ob::RealVectorStateSpace*>(space);
+  }
+}
+
+bool BoundsCheck::operator()(const ob::State* state) const {
+  if (joints_) {
+    return withinBounds(state->as<ob::RealVectorStateSpace::StateType>()->values,
+                        joints_->getBounds());
+  }
+  if (position_) {
+    const auto* s = state->as<ob::SE3StateSpace::StateType>();
+    return withinBounds(s->as<ob::RealVectorStateSpace::StateType>(0)->values,
+                        position_->getBounds()) &&
+           unitQuaternion(s->rotation());
+  }
+  return si_->satisfiesBounds(state);
+}
+
 void configurationToState(const RobotModel& robot, const std::vector<double>& q,
                           const Eigen::Isometry3d& X_WB, ob::State* state) {
   if (robot.isFreeFlying()) {
@@ -102,12 +148,12 @@ void configurationToState(const RobotModel& robot, const std::vector<double>& q,
 OctreeValidityChecker::OctreeValidityChecker(const ob::SpaceInformationPtr& si,
                                              std::shared_ptr<const OctreeCollisionModel> model,
                                              CheckerPath path)
-    : ob::StateValidityChecker(si), model_(std::move(model)), path_(path) {
+    : ob::StateValidityChecker(si), model_(std::move(model)), path_(path), in_bounds_(si) {
   specs_.clearanceComputationType = ob::StateValidityCheckerSpecs::BOUNDED_APPROXIMATE;
 }
 
 bool OctreeValidityChecker::check(const ob::State* state) const {
-  if (!si_->satisfiesBounds(state)) return false;
+  if (!in_bounds_(state)) return false;
   ThreadScratch& t = threadScratch(*model_);
   if (!stateToConfiguration(model_->robot(), state, t.q, t.X_WB)) return false;
   model_->robot().forwardKinematics(t.q.data(), t.q.size(), t.check.robot,

@@ -3,6 +3,10 @@
 // density, never collide (conservative rounding never under-approximates).
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
+#include <random>
+
 #include <ompl/base/spaces/RealVectorStateSpace.h>
 #include <ompl/base/spaces/SE3StateSpace.h>
 #include <ompl/util/Console.h>
@@ -106,6 +110,81 @@ TEST(Planning, CheckerRejectsNonFiniteAndOutOfBoundsStates) {
   values[1] = 100.0;  // beyond the joint limit
   EXPECT_FALSE(si->isValid(state.get()));
   EXPECT_EQ(si->getStateValidityChecker()->clearance(state.get()), 0.0);
+}
+
+// BoundsCheck applies OMPL's bounds rules inline; it must give SpaceInformation::satisfiesBounds's
+// answer on every state, including those a few machine epsilons either side of a bound and
+// quaternions whose norm is near the 1e-9 tolerance.
+TEST(Planning, BoundsCheckGivesOmplsAnswer) {
+  namespace ob = ompl::base;
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const double eps = std::numeric_limits<double>::epsilon();
+  // A value in [lo, hi] widened by 10 %, or (one draw in four) a bound nudged by -3..3 epsilons.
+  auto draw = [&](double lo, double hi) {
+    if (unit(rng) < 0.25) {
+      const double bound = unit(rng) < 0.5 ? lo : hi;
+      const int k = static_cast<int>(rng() % 7) - 3;
+      return bound + k * eps * std::max(1.0, std::fabs(bound));
+    }
+    const double w = hi - lo;
+    return lo - 0.1 * w + 1.2 * w * unit(rng);
+  };
+  auto compare = [&](const ob::SpaceInformationPtr& si, auto&& fill, const char* what) {
+    const BoundsCheck check(si);
+    ob::ScopedState<> state(si);
+    int inside = 0;
+    for (int i = 0; i < 20000; ++i) {
+      fill(state.get());
+      const bool ompl = si->satisfiesBounds(state.get());
+      ASSERT_EQ(check(state.get()), ompl) << what << ", state " << i;
+      inside += ompl;
+    }
+    // Both answers occur often, so the comparison tests something.
+    EXPECT_GT(inside, 2000) << what;
+    EXPECT_LT(inside, 18000) << what;
+  };
+
+  auto joints = std::make_shared<ob::RealVectorStateSpace>(4);
+  ob::RealVectorBounds jb(4);
+  const double lows[4] = {-2.9, 0.0, -1e-3, 5.0}, highs[4] = {2.9, 1.5, 1e-3, 1e4};
+  for (unsigned i = 0; i < 4; ++i) {
+    jb.setLow(i, lows[i]);
+    jb.setHigh(i, highs[i]);
+  }
+  joints->setBounds(jb);
+  compare(
+      std::make_shared<ob::SpaceInformation>(joints),
+      [&](ob::State* s) {
+        auto* v = s->as<ob::RealVectorStateSpace::StateType>()->values;
+        const unsigned d =
+            static_cast<unsigned>(rng() % 4);  // one coordinate varies, others inside
+        for (unsigned i = 0; i < 4; ++i)
+          v[i] = i == d ? draw(lows[i], highs[i]) : 0.5 * (lows[i] + highs[i]);
+      },
+      "joint space");
+
+  auto se3 = std::make_shared<ob::SE3StateSpace>();
+  ob::RealVectorBounds pb(3);
+  pb.setLow(-1.0);
+  pb.setHigh(2.0);
+  se3->setBounds(pb);
+  compare(
+      std::make_shared<ob::SpaceInformation>(se3),
+      [&](ob::State* s) {
+        auto* x = s->as<ob::SE3StateSpace::StateType>();
+        x->setXYZ(draw(-1, 2), unit(rng) < 0.8 ? 0.5 : draw(-1, 2), 0.5);
+        Eigen::Vector4d q(unit(rng) - 0.5, unit(rng) - 0.5, unit(rng) - 0.5, unit(rng) - 0.5);
+        q.normalize();
+        // Norm 1 + delta, delta around the 1e-9 tolerance (or 0).
+        const double deltas[6] = {0.0, 0.0, 5e-10, -5e-10, 2e-9, -2e-9};
+        q *= 1.0 + deltas[rng() % 6];
+        x->rotation().x = q[0];
+        x->rotation().y = q[1];
+        x->rotation().z = q[2];
+        x->rotation().w = q[3];
+      },
+      "SE(3)");
 }
 
 }  // namespace

@@ -18,6 +18,7 @@
 
 #include "octomotion/planner/collision_model.h"
 #include "octomotion/planner/environment.h"
+#include "octomotion/planner/octree_validity_checker.h"
 #include "octomotion/planner/robot_model.h"
 
 namespace octomotion {
@@ -75,6 +76,7 @@ class FclValidityChecker : public ompl::base::StateValidityChecker {
 
  private:
   std::shared_ptr<const FclCollisionModel> model_;
+  BoundsCheck in_bounds_;
 };
 
 }  // namespace octomotion

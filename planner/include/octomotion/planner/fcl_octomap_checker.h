@@ -14,6 +14,7 @@
 #include <ompl/base/StateValidityChecker.h>
 
 #include "octomotion/planner/environment.h"
+#include "octomotion/planner/octree_validity_checker.h"
 #include "octomotion/planner/robot_model.h"
 
 namespace octomotion {
@@ -74,6 +75,7 @@ class FclOctomapValidityChecker : public ompl::base::StateValidityChecker {
 
  private:
   std::shared_ptr<const FclOctomapCollisionModel> model_;
+  BoundsCheck in_bounds_;
 };
 
 }  // namespace octomotion
