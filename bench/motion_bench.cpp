@@ -20,6 +20,7 @@
 #include <random>
 #include <vector>
 
+#include "octomotion/motion/black_cell_grid.h"
 #include "octomotion/motion/collides.h"
 #include "octomotion/motion/move_tree.h"
 #include "octomotion/octree/set_ops.h"
@@ -125,6 +126,7 @@ struct Setup {
   Octree link;
   std::unique_ptr<MovableSource> prepared;
   std::vector<Eigen::Isometry3d> free_poses, colliding_poses;
+  std::unique_ptr<BlackCellGrid> cells;  // the environment's, for BM_FusedWithCellGrid
 };
 
 int depthFor(double voxel, double metres) {
@@ -153,8 +155,10 @@ Setup& setup(int res, Rounding mode) {
       voxelizeMesh(link_grid, linkMesh(), Eigen::Isometry3d::Identity(), Rounding::kConservative),
       nullptr,
       {},
-      {}});
+      {},
+      nullptr});
   s->prepared = std::make_unique<MovableSource>(s->link);
+  s->cells = std::make_unique<BlackCellGrid>(s->env);
   std::mt19937_64 rng(77);
   std::uniform_real_distribution<double> xy(-1.15, 1.15), z(0.1, 2.45);
   std::normal_distribution<double> n(0, 1);
@@ -246,12 +250,53 @@ void BM_MoveTreeThenIntersects(benchmark::State& state) {
                  (state.range(2) ? " conservative" : " center"));
 }
 
+// The same poses with the environment's BlackCellGrid (conservative rounding, where the grid
+// probes apply): speedup_vs_plain is BM_Fused's median over this one, same run.
+void BM_FusedWithCellGrid(benchmark::State& state) {
+  const int res = static_cast<int>(state.range(0));
+  const bool colliding = state.range(1) != 0;
+  Setup& s = setup(res, Rounding::kConservative);
+  const auto& poses = colliding ? s.colliding_poses : s.free_poses;
+  CollisionScratch scratch;
+  std::vector<double> times;
+  std::size_t wrong = 0;
+  for (auto _ : state) {
+    for (const auto& X : poses) {
+      const auto t0 = Clock::now();
+      const bool hit =
+          collides(*s.prepared, X, s.env, Rounding::kConservative, scratch, nullptr, s.cells.get());
+      const auto t1 = Clock::now();
+      benchmark::DoNotOptimize(hit);
+      wrong += hit != colliding;
+      times.push_back(std::chrono::duration<double, std::micro>(t1 - t0).count());
+    }
+  }
+  const Summary sum = summarize(times);
+  state.counters["median_us"] = sum.median;
+  state.counters["mean_us"] = sum.mean;
+  state.counters["grid_level"] = s.cells->level();
+  state.counters["wrong"] = static_cast<double>(wrong);
+  const auto it = fused_median.find({res, colliding, static_cast<int>(Rounding::kConservative)});
+  if (it != fused_median.end()) state.counters["speedup_vs_plain"] = it->second / sum.median;
+  state.SetLabel(std::string(res == 0   ? "5mm"
+                             : res == 1 ? "1cm"
+                                        : "2cm") +
+                 (colliding ? " colliding" : " free") + " conservative");
+}
+
 void fusedArgs(benchmark::internal::Benchmark* b) {
   for (int mode = 0; mode < 2; ++mode)
     for (int res = 0; res < 3; ++res)
       for (int cls = 0; cls < 2; ++cls) b->Args({res, cls, mode});
 }
 BENCHMARK(BM_Fused)->Apply(fusedArgs)->Iterations(10)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_FusedWithCellGrid)
+    ->Apply([](benchmark::internal::Benchmark* b) {
+      for (int res = 0; res < 3; ++res)
+        for (int cls = 0; cls < 2; ++cls) b->Args({res, cls});
+    })
+    ->Iterations(10)
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_MoveTreeThenIntersects)
     ->Apply(fusedArgs)
     ->Iterations(1)

@@ -74,7 +74,7 @@ constexpr std::size_t kCoreLeaves = 3;
 class Query {
  public:
   Query(MotionFrame& f, const MovableSource& src, const Octree& env, Rounding rounding,
-        CollisionScratch& scratch, Cube* witness)
+        CollisionScratch& scratch, Cube* witness, const BlackCellGrid* solid)
       : f_(f),
         nodes_(src.nodes().data()),
         env_(env.nodes().data()),
@@ -84,7 +84,9 @@ class Query {
         margin_(motion_detail::rejectMargin(rounding)),
         scratch_(scratch),
         witness_(witness),
-        core_(src.coreLeaves()) {}
+        core_(src.coreLeaves()),
+        src_(src),
+        solid_(solid) {}
 
   bool run() {
     if (env_root_ == Color::kWhite) return false;
@@ -111,6 +113,24 @@ class Query {
       cells[a][0] = lo[a] >> la;
       cells[a][1] = hi[a] >> la;
       count[a] = cells[a][1] != cells[a][0] ? 2 : 1;
+    }
+    // Cheapest guess: points of the source in entirely black environment cells. The voxel
+    // holding a moved leaf's centre is black in the moved tree (see inside()), so one landing
+    // in a black cell is a shared voxel. Needs the smallest leaf's moved half to pass inside().
+    if (solid_ && rounding_ == Rounding::kConservative &&
+        motion_detail::movedHalf(f_, 0) >= kInsideMinHalf) {
+      for (const std::array<double, 3>& u : src_.gridProbes()) {
+        double g[3];
+        motion_detail::movePoint(f_, u.data(), g);
+        if (solid_->black(g)) {
+          if (witness_) {
+            *witness_ = Cube{0,
+                             {static_cast<std::uint32_t>(g[0]), static_cast<std::uint32_t>(g[1]),
+                              static_cast<std::uint32_t>(g[2])}};
+          }
+          return true;
+        }
+      }
     }
     // Cheap first guess: the voxel at the moved centre of each of the largest leaves.
     for (const Cube& leaf : core_) {
@@ -469,6 +489,8 @@ class Query {
   CollisionScratch& scratch_;
   Cube* witness_;
   const std::vector<Cube>& core_;
+  const MovableSource& src_;
+  const BlackCellGrid* solid_;
   std::vector<CollisionItem>* out_ = nullptr;
 };
 
@@ -519,14 +541,44 @@ MovableSource::MovableSource(const Octree& source, double expand_factor)
     }
     core_.push_back(pick);
   }
+  // Grid probes: farthest-point sampling over every black leaf's centre, from the largest.
+  if (!leaves.empty()) {
+    std::vector<Eigen::Vector3d> centres;
+    centres.reserve(leaves.size());
+    std::size_t first = 0;
+    for (std::size_t i = 0; i < leaves.size(); ++i) {
+      centres.push_back(centre(leaves[i]));
+      if (leaves[i].level > leaves[first].level) first = i;
+    }
+    std::vector<double> nearest(leaves.size(), 1e300);
+    std::size_t pick = first;
+    for (std::size_t n = 0; n < kGridProbes && n < leaves.size(); ++n) {
+      grid_probes_.push_back({centres[pick].x(), centres[pick].y(), centres[pick].z()});
+      std::size_t next = pick;
+      double far = -1.0;
+      for (std::size_t i = 0; i < leaves.size(); ++i) {
+        nearest[i] = std::min(nearest[i], (centres[i] - centres[pick]).squaredNorm());
+        if (nearest[i] > far) {
+          far = nearest[i];
+          next = i;
+        }
+      }
+      if (far <= 0.0) break;  // every leaf centre is taken
+      pick = next;
+    }
+  }
 }
 
 bool collides(const MovableSource& source, const Eigen::Isometry3d& X_WS, const Octree& environment,
-              Rounding rounding, CollisionScratch& scratch, Cube* witness) {
+              Rounding rounding, CollisionScratch& scratch, Cube* witness,
+              const BlackCellGrid* solid) {
+  if (solid && solid->sideVoxels() != static_cast<double>(environment.grid().sideVoxels())) {
+    throw InvalidArgument("collides: the BlackCellGrid is not of this environment");
+  }
   MotionFrame f =
       motion_detail::makeMotionFrame(X_WS, source.grid(), environment.grid(), "collides");
   if (source.rootColor() == Color::kWhite) return false;
-  Query q(f, source, environment, rounding, scratch, witness);
+  Query q(f, source, environment, rounding, scratch, witness, solid);
   return q.run();
 }
 

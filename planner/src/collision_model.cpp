@@ -359,6 +359,11 @@ OctreeCollisionModel::OctreeCollisionModel(RobotModel robot, const EnvironmentGe
   // 5. The environment tree.
   environment_ =
       environment.voxelize(grid, options.rounding, &report_.environment, options.warnings);
+  if (options.rounding == Rounding::kConservative) {
+    environment_cells_ = std::make_unique<const BlackCellGrid>(environment_);
+    report_.environment_cell_grid_level = environment_cells_->level();
+    report_.environment_cell_grid_bytes = environment_cells_->bytes();
+  }
   if (const auto b = environment_.bounds()) {
     environment_box_W_ =
         Eigen::AlignedBox3d(grid.cubeMin(Cube{0, b->min}), grid.cubeMax(Cube{0, b->max}));
@@ -596,7 +601,8 @@ bool OctreeCollisionModel::linkHitsEnvironment(const LinkTree& lt, const Eigen::
     if (!near) return false;
   }
   if (path == CheckerPath::kFused) {
-    return collides(*v.movable, X_WL, environment_, options_.rounding, fused);
+    return collides(*v.movable, X_WL, environment_, options_.rounding, fused, nullptr,
+                    environment_cells_.get());
   }
   return intersects(moveTree(v.source, X_WL, environment_.grid(), options_.rounding), environment_);
 }
@@ -825,6 +831,11 @@ std::string CollisionModelReport::toString() const {
       << grid.sideMetres() << " m, origin [" << grid.origin().transpose() << "]\n";
   out << "environment: " << environment.internal_nodes << " internal nodes, " << environment.bytes
       << " bytes, built in " << environment.build_seconds << " s\n";
+  if (environment_cell_grid_level >= 0) {
+    out << "environment black-cell grid: level " << environment_cell_grid_level << " ("
+        << (1u << environment_cell_grid_level) << "-voxel cells), " << environment_cell_grid_bytes
+        << " bytes\n";
+  }
   for (const auto& o : environment.objects) {
     out << "  " << o.name << ": " << o.black_leaves << " black leaves, " << o.internal_nodes
         << " internal nodes, " << o.build_seconds << " s\n";

@@ -406,7 +406,7 @@ PlanRow runPlanning(const StudyScene& scene, const PlanSetting& setting,
 }
 
 std::size_t octreeBytes(const OctreeCollisionModel& model) {
-  std::size_t bytes = model.report().environment.bytes;
+  std::size_t bytes = model.report().environment.bytes + model.report().environment_cell_grid_bytes;
   for (const LinkReport& l : model.report().links) bytes += l.source_bytes + l.self_source_bytes;
   for (const SelfPairTableReport& t : model.report().self_pair_tables) bytes += t.bytes;
   return bytes;

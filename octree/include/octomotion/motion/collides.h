@@ -12,11 +12,13 @@
 //    rule; leaves whose probe failed are settled exactly on the cell's children.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
 #include <Eigen/Geometry>
 
+#include "octomotion/motion/black_cell_grid.h"
 #include "octomotion/octree/octree.h"
 #include "octomotion/octree/rounding.h"
 
@@ -91,12 +93,18 @@ class MovableSource {
   const std::vector<Node>& nodes() const { return nodes_; }
   // The largest black leaves (deep inside the object): tried first by every query.
   const std::vector<Cube>& coreLeaves() const { return core_; }
+  // Centres of black leaves spread over the object (greedily the farthest apart, from the
+  // largest leaf), source grid coordinates: tried against the environment's BlackCellGrid,
+  // when the query has one, before anything else.
+  static constexpr std::size_t kGridProbes = 16;
+  const std::vector<std::array<double, 3>>& gridProbes() const { return grid_probes_; }
 
  private:
   WorldGrid grid_;
   Color root_;
   std::vector<Node> nodes_;
   std::vector<Cube> core_;
+  std::vector<std::array<double, 3>> grid_probes_;
   double expand_factor_;
 };
 
@@ -111,8 +119,11 @@ class CollisionScratch {
 // True iff intersects(moveTree(source, X_WS, environment.grid(), rounding), environment).
 // On true, *witness (if given) receives a voxel black in both. Const and thread-safe given one
 // scratch per thread. Throws InvalidArgument for an invalid pose.
+// `solid` (optional, conservative rounding only): the environment's BlackCellGrid; the source's
+// grid probes that land in a black cell answer at once (same answer, found sooner).
 bool collides(const MovableSource& source, const Eigen::Isometry3d& X_WS, const Octree& environment,
-              Rounding rounding, CollisionScratch& scratch, Cube* witness = nullptr);
+              Rounding rounding, CollisionScratch& scratch, Cube* witness = nullptr,
+              const BlackCellGrid* solid = nullptr);
 
 // Convenience form for one-off queries: prepares the source and scratch on every call
 // (allocates, O(source size)); use MovableSource + CollisionScratch in loops.

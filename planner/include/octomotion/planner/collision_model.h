@@ -162,7 +162,9 @@ struct CollisionModelReport {
   std::size_t self_links = 0;  // links taking part in at least one self pair
   SelfBroadPhase self_broad_phase = SelfBroadPhase::kPairs;  // resolved (never kAuto)
   EnvironmentPreTest environment_pre_test = EnvironmentPreTest::kEnvironmentBox;  // resolved
-  std::size_t environment_object_boxes = 0;    // object boxes the pre-test loops over
+  std::size_t environment_object_boxes = 0;  // object boxes the pre-test loops over
+  int environment_cell_grid_level = -1;      // BlackCellGrid of the environment (-1: none)
+  std::size_t environment_cell_grid_bytes = 0;
   std::vector<std::string> environment_order;  // links in the order the environment half tests
   std::vector<SelfPairTableReport> self_pair_tables;
   double build_seconds = 0;
@@ -296,6 +298,9 @@ class OctreeCollisionModel {
   RobotModel robot_;
   CollisionModelOptions options_;
   Octree environment_;
+  // The environment's entirely black cells as a bit grid (conservative rounding; else null):
+  // the fused query tries a few points of each link in it before any traversal.
+  std::unique_ptr<const BlackCellGrid> environment_cells_;
   Eigen::AlignedBox3d environment_box_W_;  // world box of the environment's black voxels
   // kObjectBoxes: each object's box grown by a voxel (so it holds the object's black voxels).
   std::vector<Eigen::AlignedBox3d> object_boxes_W_;
