@@ -58,6 +58,12 @@ TEST(Cli, InfoDescribesWhatIsModelled) {
   EXPECT_THAT(r.out, Not(HasSubstr("self-collision trees")));
   EXPECT_THAT(r.out, HasSubstr("environment tested in the order (share of sampled states "
                                "hitting): hand"));
+  // The black-cell grid of the fused query's first probes: conservative models only.
+  EXPECT_THAT(r.out, HasSubstr("environment black-cell grid: level "));
+  const CliRun center =
+      run("info " + scene("bookshelf.yaml") + " --resolution 0.02 --rounding center");
+  ASSERT_EQ(center.status, 0) << center.err;
+  EXPECT_THAT(center.out, Not(HasSubstr("black-cell grid")));
   const CliRun fine =
       run("info " + scene("bookshelf.yaml") + " --resolution 0.02 --self-link-resolution 0.005");
   ASSERT_EQ(fine.status, 0) << fine.err;
