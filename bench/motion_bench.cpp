@@ -187,26 +187,42 @@ Summary summarize(std::vector<double> t) {
 
 std::map<std::tuple<int, int, int>, double> fused_median;  // for the speed-up counter
 
-void BM_Fused(benchmark::State& state) {
-  const int res = static_cast<int>(state.range(0));
-  const bool colliding = state.range(1) != 0;
-  const Rounding mode = state.range(2) ? Rounding::kConservative : Rounding::kCenter;
-  Setup& s = setup(res, mode);
+std::string label(int res, bool colliding, Rounding mode) {
+  return std::string(res == 0   ? "5mm"
+                     : res == 1 ? "1cm"
+                                : "2cm") +
+         (colliding ? " colliding" : " free") +
+         (mode == Rounding::kConservative ? " conservative" : " center");
+}
+
+// The fused query over the setup's free or colliding poses (with the environment's cell grid
+// when `cells` is given), each call timed in microseconds; answers that disagree with the
+// poses' class are counted in `wrong`.
+std::vector<double> timeCollides(benchmark::State& state, const Setup& s, bool colliding,
+                                 Rounding mode, const BlackCellGrid* cells, std::size_t& wrong) {
   const auto& poses = colliding ? s.colliding_poses : s.free_poses;
   CollisionScratch scratch;
   std::vector<double> times;
-  std::size_t wrong = 0;
   for (auto _ : state) {
     for (const auto& X : poses) {
       const auto t0 = Clock::now();
-      const bool hit = collides(*s.prepared, X, s.env, mode, scratch);
+      const bool hit = collides(*s.prepared, X, s.env, mode, scratch, nullptr, cells);
       const auto t1 = Clock::now();
       benchmark::DoNotOptimize(hit);
       wrong += hit != colliding;
       times.push_back(std::chrono::duration<double, std::micro>(t1 - t0).count());
     }
   }
-  const Summary sum = summarize(times);
+  return times;
+}
+
+void BM_Fused(benchmark::State& state) {
+  const int res = static_cast<int>(state.range(0));
+  const bool colliding = state.range(1) != 0;
+  const Rounding mode = state.range(2) ? Rounding::kConservative : Rounding::kCenter;
+  Setup& s = setup(res, mode);
+  std::size_t wrong = 0;
+  const Summary sum = summarize(timeCollides(state, s, colliding, mode, nullptr, wrong));
   fused_median[{res, colliding, static_cast<int>(mode)}] = sum.median;
   state.counters["median_us"] = sum.median;
   state.counters["p90_us"] = sum.p90;
@@ -214,11 +230,7 @@ void BM_Fused(benchmark::State& state) {
   state.counters["link_leaves"] = static_cast<double>(s.link.blackLeafCount());
   state.counters["env_nodes"] = static_cast<double>(s.env.internalNodeCount());
   state.counters["wrong"] = static_cast<double>(wrong);
-  state.SetLabel(std::string(res == 0   ? "5mm"
-                             : res == 1 ? "1cm"
-                                        : "2cm") +
-                 (colliding ? " colliding" : " free") +
-                 (state.range(2) ? " conservative" : " center"));
+  state.SetLabel(label(res, colliding, mode));
 }
 
 void BM_MoveTreeThenIntersects(benchmark::State& state) {
@@ -243,11 +255,7 @@ void BM_MoveTreeThenIntersects(benchmark::State& state) {
   state.counters["p90_us"] = sum.p90;
   const auto it = fused_median.find({res, colliding, static_cast<int>(mode)});
   if (it != fused_median.end()) state.counters["speedup_vs_fused"] = sum.median / it->second;
-  state.SetLabel(std::string(res == 0   ? "5mm"
-                             : res == 1 ? "1cm"
-                                        : "2cm") +
-                 (colliding ? " colliding" : " free") +
-                 (state.range(2) ? " conservative" : " center"));
+  state.SetLabel(label(res, colliding, mode));
 }
 
 // The same poses with the environment's BlackCellGrid (conservative rounding, where the grid
@@ -256,32 +264,16 @@ void BM_FusedWithCellGrid(benchmark::State& state) {
   const int res = static_cast<int>(state.range(0));
   const bool colliding = state.range(1) != 0;
   Setup& s = setup(res, Rounding::kConservative);
-  const auto& poses = colliding ? s.colliding_poses : s.free_poses;
-  CollisionScratch scratch;
-  std::vector<double> times;
   std::size_t wrong = 0;
-  for (auto _ : state) {
-    for (const auto& X : poses) {
-      const auto t0 = Clock::now();
-      const bool hit =
-          collides(*s.prepared, X, s.env, Rounding::kConservative, scratch, nullptr, s.cells.get());
-      const auto t1 = Clock::now();
-      benchmark::DoNotOptimize(hit);
-      wrong += hit != colliding;
-      times.push_back(std::chrono::duration<double, std::micro>(t1 - t0).count());
-    }
-  }
-  const Summary sum = summarize(times);
+  const Summary sum =
+      summarize(timeCollides(state, s, colliding, Rounding::kConservative, s.cells.get(), wrong));
   state.counters["median_us"] = sum.median;
   state.counters["mean_us"] = sum.mean;
   state.counters["grid_level"] = s.cells->level();
   state.counters["wrong"] = static_cast<double>(wrong);
   const auto it = fused_median.find({res, colliding, static_cast<int>(Rounding::kConservative)});
   if (it != fused_median.end()) state.counters["speedup_vs_plain"] = it->second / sum.median;
-  state.SetLabel(std::string(res == 0   ? "5mm"
-                             : res == 1 ? "1cm"
-                                        : "2cm") +
-                 (colliding ? " colliding" : " free") + " conservative");
+  state.SetLabel(label(res, colliding, Rounding::kConservative));
 }
 
 void fusedArgs(benchmark::internal::Benchmark* b) {

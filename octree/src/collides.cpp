@@ -84,7 +84,6 @@ class Query {
         margin_(motion_detail::rejectMargin(rounding)),
         scratch_(scratch),
         witness_(witness),
-        core_(src.coreLeaves()),
         src_(src),
         solid_(solid) {}
 
@@ -133,7 +132,7 @@ class Query {
       }
     }
     // Cheap first guess: the voxel at the moved centre of each of the largest leaves.
-    for (const Cube& leaf : core_) {
+    for (const Cube& leaf : src_.coreLeaves()) {
       double u[3], g[3];
       motion_detail::cubeCentre(leaf, u);
       motion_detail::movePoint(f_, u, g);
@@ -488,7 +487,6 @@ class Query {
   double margin_;
   CollisionScratch& scratch_;
   Cube* witness_;
-  const std::vector<Cube>& core_;
   const MovableSource& src_;
   const BlackCellGrid* solid_;
   std::vector<CollisionItem>* out_ = nullptr;
