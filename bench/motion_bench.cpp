@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "octomotion/motion/black_cell_grid.h"
+#include "octomotion/motion/clearance_grid.h"
 #include "octomotion/motion/collides.h"
 #include "octomotion/motion/move_tree.h"
 #include "octomotion/octree/set_ops.h"
@@ -127,6 +128,7 @@ struct Setup {
   std::unique_ptr<MovableSource> prepared;
   std::vector<Eigen::Isometry3d> free_poses, colliding_poses;
   std::unique_ptr<BlackCellGrid> cells;  // the environment's, for BM_FusedWithCellGrid
+  std::unique_ptr<ClearanceGrid> clear;  // the environment's, for BM_FusedWithClearanceGrid
 };
 
 int depthFor(double voxel, double metres) {
@@ -156,9 +158,11 @@ Setup& setup(int res, Rounding mode) {
       nullptr,
       {},
       {},
+      nullptr,
       nullptr});
   s->prepared = std::make_unique<MovableSource>(s->link);
   s->cells = std::make_unique<BlackCellGrid>(s->env);
+  s->clear = std::make_unique<ClearanceGrid>(s->env);
   std::mt19937_64 rng(77);
   std::uniform_real_distribution<double> xy(-1.15, 1.15), z(0.1, 2.45);
   std::normal_distribution<double> n(0, 1);
@@ -196,17 +200,18 @@ std::string label(int res, bool colliding, Rounding mode) {
 }
 
 // The fused query over the setup's free or colliding poses (with the environment's cell grid
-// when `cells` is given), each call timed in microseconds; answers that disagree with the
-// poses' class are counted in `wrong`.
+// and clearance grid when given), each call timed in microseconds; answers that disagree with
+// the poses' class are counted in `wrong`.
 std::vector<double> timeCollides(benchmark::State& state, const Setup& s, bool colliding,
-                                 Rounding mode, const BlackCellGrid* cells, std::size_t& wrong) {
+                                 Rounding mode, const BlackCellGrid* cells,
+                                 const ClearanceGrid* clear, std::size_t& wrong) {
   const auto& poses = colliding ? s.colliding_poses : s.free_poses;
   CollisionScratch scratch;
   std::vector<double> times;
   for (auto _ : state) {
     for (const auto& X : poses) {
       const auto t0 = Clock::now();
-      const bool hit = collides(*s.prepared, X, s.env, mode, scratch, nullptr, cells);
+      const bool hit = collides(*s.prepared, X, s.env, mode, scratch, nullptr, cells, clear);
       const auto t1 = Clock::now();
       benchmark::DoNotOptimize(hit);
       wrong += hit != colliding;
@@ -222,7 +227,7 @@ void BM_Fused(benchmark::State& state) {
   const Rounding mode = state.range(2) ? Rounding::kConservative : Rounding::kCenter;
   Setup& s = setup(res, mode);
   std::size_t wrong = 0;
-  const Summary sum = summarize(timeCollides(state, s, colliding, mode, nullptr, wrong));
+  const Summary sum = summarize(timeCollides(state, s, colliding, mode, nullptr, nullptr, wrong));
   fused_median[{res, colliding, static_cast<int>(mode)}] = sum.median;
   state.counters["median_us"] = sum.median;
   state.counters["p90_us"] = sum.p90;
@@ -265,8 +270,8 @@ void BM_FusedWithCellGrid(benchmark::State& state) {
   const bool colliding = state.range(1) != 0;
   Setup& s = setup(res, Rounding::kConservative);
   std::size_t wrong = 0;
-  const Summary sum =
-      summarize(timeCollides(state, s, colliding, Rounding::kConservative, s.cells.get(), wrong));
+  const Summary sum = summarize(
+      timeCollides(state, s, colliding, Rounding::kConservative, s.cells.get(), nullptr, wrong));
   state.counters["median_us"] = sum.median;
   state.counters["mean_us"] = sum.mean;
   state.counters["grid_level"] = s.cells->level();
@@ -274,6 +279,25 @@ void BM_FusedWithCellGrid(benchmark::State& state) {
   const auto it = fused_median.find({res, colliding, static_cast<int>(Rounding::kConservative)});
   if (it != fused_median.end()) state.counters["speedup_vs_plain"] = it->second / sum.median;
   state.SetLabel(label(res, colliding, Rounding::kConservative));
+}
+
+// The same poses with the environment's ClearanceGrid (either rounding): speedup_vs_plain is
+// BM_Fused's median over this one, same run.
+void BM_FusedWithClearanceGrid(benchmark::State& state) {
+  const int res = static_cast<int>(state.range(0));
+  const bool colliding = state.range(1) != 0;
+  const Rounding mode = state.range(2) ? Rounding::kConservative : Rounding::kCenter;
+  Setup& s = setup(res, mode);
+  std::size_t wrong = 0;
+  const Summary sum =
+      summarize(timeCollides(state, s, colliding, mode, nullptr, s.clear.get(), wrong));
+  state.counters["median_us"] = sum.median;
+  state.counters["mean_us"] = sum.mean;
+  state.counters["grid_level"] = s.clear->level();
+  state.counters["wrong"] = static_cast<double>(wrong);
+  const auto it = fused_median.find({res, colliding, static_cast<int>(mode)});
+  if (it != fused_median.end()) state.counters["speedup_vs_plain"] = it->second / sum.median;
+  state.SetLabel(label(res, colliding, mode));
 }
 
 void fusedArgs(benchmark::internal::Benchmark* b) {
@@ -287,6 +311,10 @@ BENCHMARK(BM_FusedWithCellGrid)
       for (int res = 0; res < 3; ++res)
         for (int cls = 0; cls < 2; ++cls) b->Args({res, cls});
     })
+    ->Iterations(10)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_FusedWithClearanceGrid)
+    ->Apply(fusedArgs)
     ->Iterations(10)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_MoveTreeThenIntersects)

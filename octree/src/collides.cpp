@@ -74,7 +74,8 @@ constexpr std::size_t kCoreLeaves = 3;
 class Query {
  public:
   Query(MotionFrame& f, const MovableSource& src, const Octree& env, Rounding rounding,
-        CollisionScratch& scratch, Cube* witness, const BlackCellGrid* solid)
+        CollisionScratch& scratch, Cube* witness, const BlackCellGrid* solid,
+        const ClearanceGrid* clear)
       : f_(f),
         nodes_(src.nodes().data()),
         env_(env.nodes().data()),
@@ -85,7 +86,8 @@ class Query {
         scratch_(scratch),
         witness_(witness),
         src_(src),
-        solid_(solid) {}
+        solid_(solid),
+        clear_(clear) {}
 
   bool run() {
     if (env_root_ == Color::kWhite) return false;
@@ -131,6 +133,15 @@ class Query {
         }
       }
     }
+    // Drop the parts of the moved source that are clear of the environment; none left: free.
+    std::vector<CollisionItem>& pieces = scratch_.pieces;
+    pieces.clear();
+    if (clear_) {
+      splitByClearance(root);
+      if (pieces.empty()) return false;
+    } else {
+      pieces.push_back(root);
+    }
     // Cheap first guess: the voxel at the moved centre of each of the largest leaves.
     for (const Cube& leaf : src_.coreLeaves()) {
       double u[3], g[3];
@@ -153,9 +164,12 @@ class Query {
         for (int ix = 0; ix < count[0]; ++ix) {
           const Cube cell{la, {cells[0][ix] << la, cells[1][iy] << la, cells[2][iz] << la}};
           const std::uint32_t env = locate(cell);
-          if (env == kWhiteCell || !reaches(root, cell)) continue;
+          if (env == kWhiteCell) continue;
           const std::size_t b = out_->size();
-          pushRefined(root, cell);
+          for (const CollisionItem& piece : pieces) {
+            if (reaches(piece, cell)) pushRefined(piece, cell);
+          }
+          if (out_->size() == b) continue;
           const bool hit = visit(cell, env, b, out_->size());
           out_->resize(b);
           if (hit) return true;
@@ -168,6 +182,40 @@ class Query {
  private:
   static constexpr std::uint32_t kWhiteCell = 0xfffffffeu;
   static constexpr std::uint32_t kBlackCell = 0xffffffffu;
+
+  // Fills scratch_.pieces with pieces covering the moved source's black voxels. Breadth first
+  // from `root`: a piece whose bounding sphere lies within the clearance at its centre is
+  // dropped (every black voxel of the moved tree touches a moved piece, every point of a black
+  // environment voxel is at least the clearance away); a gray node is split into its children
+  // while the budget (kClearanceSplits) lasts and its sphere is wider than a clearance cell
+  // (smaller ones are below the grid's resolution); the rest are kept.
+  void splitByClearance(const CollisionItem& root) {
+    std::vector<CollisionItem>& todo = scratch_.items;  // free until the descent
+    std::vector<CollisionItem>& pieces = scratch_.pieces;
+    todo.clear();
+    todo.push_back(root);
+    const double cell = clear_->cellVoxels();
+    int splits = 0;
+    for (std::size_t next = 0; next < todo.size(); ++next) {
+      const CollisionItem it = todo[next];  // the pushes below may reallocate
+      const double r2 = it.rs[0] * it.rs[0] + it.rs[1] * it.rs[1] + it.rs[2] * it.rs[2];
+      const double c = clear_->clearance(it.g);
+      // Clearances are whole quarters of a cell (exact); the margin covers rounding in g and r.
+      if (r2 * (1.0 + 1e-9) + 1e-6 < c * c) continue;
+      if (it.leaf >= 0 || splits == kClearanceSplits || r2 < cell * cell) {
+        pieces.push_back(it);
+        continue;
+      }
+      ++splits;
+      const Node& n = nodes_[it.node];
+      for (std::uint8_t m = n.black; m; m &= static_cast<std::uint8_t>(m - 1)) {
+        todo.push_back(leafItem(it.node, __builtin_ctz(m)));
+      }
+      for (std::uint8_t m = n.gray; m; m &= static_cast<std::uint8_t>(m - 1)) {
+        todo.push_back(nodeItem(n.childIndex(__builtin_ctz(m))));
+      }
+    }
+  }
 
   // The environment node of an anchor cell, kBlackCell or kWhiteCell.
   std::uint32_t locate(const Cube& cell) const {
@@ -489,6 +537,7 @@ class Query {
   Cube* witness_;
   const MovableSource& src_;
   const BlackCellGrid* solid_;
+  const ClearanceGrid* clear_;
   std::vector<CollisionItem>* out_ = nullptr;
 };
 
@@ -569,14 +618,18 @@ MovableSource::MovableSource(const Octree& source, double expand_factor)
 
 bool collides(const MovableSource& source, const Eigen::Isometry3d& X_WS, const Octree& environment,
               Rounding rounding, CollisionScratch& scratch, Cube* witness,
-              const BlackCellGrid* solid) {
+              const BlackCellGrid* solid, const ClearanceGrid* clearance) {
   if (solid && solid->sideVoxels() != static_cast<double>(environment.grid().sideVoxels())) {
     throw InvalidArgument("collides: the BlackCellGrid is not of this environment");
+  }
+  if (clearance &&
+      clearance->sideVoxels() != static_cast<double>(environment.grid().sideVoxels())) {
+    throw InvalidArgument("collides: the ClearanceGrid is not of this environment");
   }
   MotionFrame f =
       motion_detail::makeMotionFrame(X_WS, source.grid(), environment.grid(), "collides");
   if (source.rootColor() == Color::kWhite) return false;
-  Query q(f, source, environment, rounding, scratch, witness, solid);
+  Query q(f, source, environment, rounding, scratch, witness, solid, clearance);
   return q.run();
 }
 

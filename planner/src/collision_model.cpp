@@ -364,6 +364,9 @@ OctreeCollisionModel::OctreeCollisionModel(RobotModel robot, const EnvironmentGe
     report_.environment_cell_grid_level = environment_cells_->level();
     report_.environment_cell_grid_bytes = environment_cells_->bytes();
   }
+  environment_clearance_ = std::make_unique<const ClearanceGrid>(environment_);
+  report_.environment_clearance_grid_level = environment_clearance_->level();
+  report_.environment_clearance_grid_bytes = environment_clearance_->bytes();
   if (const auto b = environment_.bounds()) {
     environment_box_W_ =
         Eigen::AlignedBox3d(grid.cubeMin(Cube{0, b->min}), grid.cubeMax(Cube{0, b->max}));
@@ -602,7 +605,7 @@ bool OctreeCollisionModel::linkHitsEnvironment(const LinkTree& lt, const Eigen::
   }
   if (path == CheckerPath::kFused) {
     return collides(*v.movable, X_WL, environment_, options_.rounding, fused, nullptr,
-                    environment_cells_.get());
+                    environment_cells_.get(), environment_clearance_.get());
   }
   return intersects(moveTree(v.source, X_WL, environment_.grid(), options_.rounding), environment_);
 }
@@ -835,6 +838,11 @@ std::string CollisionModelReport::toString() const {
     out << "environment black-cell grid: level " << environment_cell_grid_level << " ("
         << (1u << environment_cell_grid_level) << "-voxel cells), " << environment_cell_grid_bytes
         << " bytes\n";
+  }
+  if (environment_clearance_grid_level >= 0) {
+    out << "environment clearance grid: level " << environment_clearance_grid_level << " ("
+        << (1u << environment_clearance_grid_level) << "-voxel cells), "
+        << environment_clearance_grid_bytes << " bytes\n";
   }
   for (const auto& o : environment.objects) {
     out << "  " << o.name << ": " << o.black_leaves << " black leaves, " << o.internal_nodes

@@ -406,9 +406,11 @@ PlanRow runPlanning(const StudyScene& scene, const PlanSetting& setting,
 }
 
 std::size_t octreeBytes(const OctreeCollisionModel& model) {
-  std::size_t bytes = model.report().environment.bytes + model.report().environment_cell_grid_bytes;
-  for (const LinkReport& l : model.report().links) bytes += l.source_bytes + l.self_source_bytes;
-  for (const SelfPairTableReport& t : model.report().self_pair_tables) bytes += t.bytes;
+  const CollisionModelReport& r = model.report();
+  std::size_t bytes =
+      r.environment.bytes + r.environment_cell_grid_bytes + r.environment_clearance_grid_bytes;
+  for (const LinkReport& l : r.links) bytes += l.source_bytes + l.self_source_bytes;
+  for (const SelfPairTableReport& t : r.self_pair_tables) bytes += t.bytes;
   return bytes;
 }
 

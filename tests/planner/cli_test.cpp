@@ -64,6 +64,9 @@ TEST(Cli, InfoDescribesWhatIsModelled) {
       run("info " + scene("bookshelf.yaml") + " --resolution 0.02 --rounding center");
   ASSERT_EQ(center.status, 0) << center.err;
   EXPECT_THAT(center.out, Not(HasSubstr("black-cell grid")));
+  // The clearance grid serves both roundings.
+  EXPECT_THAT(r.out, HasSubstr("environment clearance grid: level "));
+  EXPECT_THAT(center.out, HasSubstr("environment clearance grid: level "));
   const CliRun fine =
       run("info " + scene("bookshelf.yaml") + " --resolution 0.02 --self-link-resolution 0.005");
   ASSERT_EQ(fine.status, 0) << fine.err;

@@ -19,6 +19,7 @@
 #include <Eigen/Geometry>
 
 #include "octomotion/motion/black_cell_grid.h"
+#include "octomotion/motion/clearance_grid.h"
 #include "octomotion/octree/octree.h"
 #include "octomotion/octree/rounding.h"
 
@@ -113,8 +114,12 @@ class MovableSource {
 // allocates nothing. Not shareable between concurrent queries.
 class CollisionScratch {
  public:
-  CollisionScratch() { items.reserve(1024); }
-  std::vector<detail::CollisionItem> items;  // stack of the pieces reaching each visited cell
+  CollisionScratch() {
+    items.reserve(1024);
+    pieces.reserve(64);
+  }
+  std::vector<detail::CollisionItem> items;   // stack of the pieces reaching each visited cell
+  std::vector<detail::CollisionItem> pieces;  // the source pieces not proven clear
 };
 
 // True iff intersects(moveTree(source, X_WS, environment.grid(), rounding), environment).
@@ -122,9 +127,21 @@ class CollisionScratch {
 // scratch per thread. Throws InvalidArgument for an invalid pose.
 // `solid` (optional, conservative rounding only): the environment's BlackCellGrid; the source's
 // grid probes that land in a black cell answer at once (same answer, found sooner).
+// `clearance` (optional, either rounding): the environment's ClearanceGrid; before the descent
+// the moved source is split (at most kClearanceSplits nodes, breadth first) into pieces, and a
+// piece whose bounding sphere lies within the clearance at its centre is dropped (same answer;
+// a free pose near an obstacle descends only what is near it). Four splits, callgrind over
+// 20,000 uniform drone states (grid of 2^18 cells): rooms 4 cm 114M -> 78M instructions, 2 cm
+// 88M -> 70M, narrow_passage 4 and 2 cm -11 %, the arms' scenes 0 to -2 %; eight splits cost the
+// colliding states more than they save the free ones (narrow_passage +7 to +14 % over four).
+// The pieces are kept for the descent even when not all are clear (falling back to the whole
+// source then costs rooms 4 cm 42 % more instructions); a pose in collision pays for them when
+// the BlackCellGrid's probes miss (motion_bench: colliding medians 1.2-1.8x slower without a
+// BlackCellGrid, free medians 2-2.4x faster).
+constexpr int kClearanceSplits = 4;
 bool collides(const MovableSource& source, const Eigen::Isometry3d& X_WS, const Octree& environment,
               Rounding rounding, CollisionScratch& scratch, Cube* witness = nullptr,
-              const BlackCellGrid* solid = nullptr);
+              const BlackCellGrid* solid = nullptr, const ClearanceGrid* clearance = nullptr);
 
 // Convenience form for one-off queries: prepares the source and scratch on every call
 // (allocates, O(source size)); use MovableSource + CollisionScratch in loops.

@@ -165,6 +165,8 @@ struct CollisionModelReport {
   std::size_t environment_object_boxes = 0;  // object boxes the pre-test loops over
   int environment_cell_grid_level = -1;      // BlackCellGrid of the environment (-1: none)
   std::size_t environment_cell_grid_bytes = 0;
+  int environment_clearance_grid_level = -1;  // ClearanceGrid of the environment (-1: none)
+  std::size_t environment_clearance_grid_bytes = 0;
   std::vector<std::string> environment_order;  // links in the order the environment half tests
   std::vector<SelfPairTableReport> self_pair_tables;
   double build_seconds = 0;
@@ -301,6 +303,9 @@ class OctreeCollisionModel {
   // The environment's entirely black cells as a bit grid (conservative rounding; else null):
   // the fused query tries a few points of each link in it before any traversal.
   std::unique_ptr<const BlackCellGrid> environment_cells_;
+  // Lower bounds on the distance to the environment per cell: the fused query drops the pieces
+  // of a link that are clear of it before descending.
+  std::unique_ptr<const ClearanceGrid> environment_clearance_;
   Eigen::AlignedBox3d environment_box_W_;  // world box of the environment's black voxels
   // kObjectBoxes: each object's box grown by a voxel (so it holds the object's black voxels).
   std::vector<Eigen::AlignedBox3d> object_boxes_W_;
