@@ -4,6 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -196,6 +199,39 @@ TEST(TradeStudyTest, SelfPairTablesAreHonoured) {
   std::ostringstream md;
   writeMarkdown(tabled, md);
   EXPECT_NE(md.str().find("Self-pair tables on"), std::string::npos);
+}
+
+// Planning through ompl::tools::Benchmark: every planning row has its runs, and the planner's
+// own solve time (measured inside Benchmark's run, without its termination-condition thread) is
+// positive and never above Benchmark's time of the same runs; the .log files carry both.
+TEST(TradeStudyTest, PlanningRecordsBenchmarksTimeAndThePlannersOwn) {
+  TradeStudyOptions options = bookshelfFusedConservative();
+  options.states = 20;
+  options.runs = 3;
+  options.planners = {{"RRTConnect", 2.0}};
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / "octomotion_trade_study_planning_test";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  options.log_dir = dir.string();
+  const TradeStudyResult result = runTradeStudy(options);
+  ASSERT_EQ(result.planning.size(), 2u);  // FCL and the fused conservative octree at 2 cm
+  for (const PlanRow& r : result.planning) {
+    SCOPED_TRACE(r.checker);
+    EXPECT_EQ(r.runs, 3u);
+    EXPECT_EQ(r.solved, 3u);  // RRTConnect solves the bookshelf in milliseconds at 2 cm
+    EXPECT_GT(r.median_solve_time, 0.0);
+    EXPECT_LE(r.median_solve_time, r.median_time);
+    std::ifstream log(r.log_file);
+    ASSERT_TRUE(log.good()) << r.log_file;
+    const std::string text((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>());
+    EXPECT_NE(text.find("solve time REAL"), std::string::npos);
+    EXPECT_NE(text.find("\ntime REAL"), std::string::npos);  // Benchmark's own
+  }
+  std::ostringstream md;
+  writeMarkdown(result, md);
+  EXPECT_NE(md.str().find("median solve s"), std::string::npos);
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace
