@@ -35,6 +35,7 @@ const char* kUsage = R"(usage: tradeoff_bench [options]
   --runs N                planning runs per planner and setting (default 20)
   --planners NAME[:S],..  default RRTConnect:5,RRTstar:1
   --no-fcl-octomap        leave out FCL+OctoMap
+  --link-ratio R          octree link trees at R x each resolution (default 1; e.g. 0.25)
   --self-link-ratio R     self-collision link trees at R x each resolution (default: the link
                           trees themselves)
   --self-pair-tables on|off  joint-space tables for self pairs (default: the scene's setting)
@@ -91,6 +92,10 @@ int run(int argc, char** argv) {
                                                          ? 0.0
                                                          : number(arg, p.substr(colon + 1))});
       }
+    } else if (arg == "--link-ratio") {
+      const double r = number(arg, value());
+      if (!(r > 0 && r <= 1)) throw InvalidArgument("--link-ratio: must be in (0, 1]");
+      base.link_resolution_ratio = r;
     } else if (arg == "--self-link-ratio") {
       const double r = number(arg, value());
       if (!(r > 0 && r <= 1)) throw InvalidArgument("--self-link-ratio: must be in (0, 1]");

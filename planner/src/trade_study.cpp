@@ -323,7 +323,7 @@ double property(const std::map<std::string, std::string>& run, const std::string
 // The planner under study, timed from inside: Benchmark's "time REAL" also holds its own
 // machinery of each run (it solves through Planner::solve(fn, 0.1), whose termination condition
 // is evaluated by a thread that sleeps in 1 ms steps and is joined when the solve returns:
-// 0.4-0.6 ms per run here, bench/planner_plan_split_bench), a third of the octree's median
+// 0.4-1 ms per run here, bench/planner_plan_split_bench), a third of the octree's median
 // RRTConnect solve in the easiest arm scene. The post-run event writes the wrapped planner's own
 // solve time next to it ("solve time REAL").
 // Everything else is the wrapped planner's: name, specs, parameters and progress properties (the

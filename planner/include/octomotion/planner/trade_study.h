@@ -98,7 +98,7 @@ struct PlanRow {
   unsigned runs = 0, solved = 0;  // exact solutions
   double median_time = 0;         // seconds, over every run (unsolved ones count the limit)
   // The same for the planner's own solve, without what Benchmark's "time REAL" adds to every
-  // run (its termination-condition thread, 0.4-0.6 ms here); the logs' "solve time REAL".
+  // run (its termination-condition thread, 0.4-1 ms here); the logs' "solve time REAL".
   double median_solve_time = 0;
   double median_first_solution = -1;  // seconds, solved runs, from Benchmark's progress data
   double median_length = -1;          // simplified path length, solved runs; -1 if none
