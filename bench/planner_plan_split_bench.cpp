@@ -3,7 +3,7 @@
 // split into the time spent in the state validity checker and the rest (sampling,
 // nearest-neighbour queries, interpolation, the motion validator's bookkeeping). Then what
 // ompl::tools::Benchmark adds to every run's "time REAL" is measured with a planner that spins
-// for each checker's median solve time: Benchmark solves through Planner::solve(fn, 0.1), whose
+// for each checker's solve times in turn: Benchmark solves through Planner::solve(fn, 0.1), whose
 // termination condition is evaluated by a thread that sleeps in 1 ms steps and is joined when
 // the solve returns. The solves here use a thread-free condition. A plain program (like
 // planner_check_breakdown_bench): per-solve wall times with steady_clock; each check is timed
@@ -79,22 +79,24 @@ class TimedChecker : public ob::StateValidityChecker {
   mutable double seconds_ = 0;
 };
 
-// A planner that spins for a fixed time and gives up: Benchmark's time of its runs minus that
-// time is what Benchmark adds to every run. (A planner that returned at once would hide most of
-// it: the termination-condition thread would be joined before its first 1 ms sleep.)
+// A planner that spins and gives up, run r for durations[r % n]: Benchmark's time of its runs
+// minus the spin is what Benchmark adds to every run. (A planner that returned at once would hide
+// most of it: the termination-condition thread would be joined before its first 1 ms sleep.)
 class SpinFor : public ob::Planner {
  public:
-  SpinFor(const ob::SpaceInformationPtr& si, double seconds)
-      : ob::Planner(si, "SpinFor"), seconds_(seconds) {}
+  SpinFor(const ob::SpaceInformationPtr& si, std::vector<double> durations)
+      : ob::Planner(si, "SpinFor"), durations_(std::move(durations)) {}
   ob::PlannerStatus solve(const ob::PlannerTerminationCondition& ptc) override {
+    const double spin = durations_[next_++ % durations_.size()];
     const auto start = Clock::now();
-    while (seconds(start, Clock::now()) < seconds_ && !ptc()) {
+    while (seconds(start, Clock::now()) < spin && !ptc()) {
     }
     return ob::PlannerStatus::TIMEOUT;
   }
 
  private:
-  double seconds_;
+  std::vector<double> durations_;
+  std::size_t next_ = 0;
 };
 
 // The cost of the two clock reads around each check (subtracted from the check time).
@@ -154,21 +156,26 @@ Split measure(const std::string& scene_path, double resolution, Rounding roundin
   return split;
 }
 
-// What Benchmark's "time REAL" adds to a run of `spin` seconds, median over `runs`.
-double benchmarkFixedCost(const std::string& scene_path, double resolution, double spin, int runs) {
+// What Benchmark's "time REAL" adds to runs that spin for the given solve times (the join waits
+// out the thread's current 1 ms sleep, so it depends on each run's length): the median over as
+// many runs as there are times.
+double benchmarkAddedTime(const std::string& scene_path, double resolution,
+                          const std::vector<double>& solves) {
   SceneOverrides overrides;
   overrides.resolution = resolution;
   PlanningScene scene = loadPlanningScene(scene_path, overrides);
-  ompl::tools::Benchmark benchmark(*scene.setup, "fixed cost");
-  benchmark.addPlanner(std::make_shared<SpinFor>(scene.setup->getSpaceInformation(), spin));
-  const ompl::tools::Benchmark::Request request(1.0, 4096.0, static_cast<unsigned>(runs), 0.05,
-                                                /*displayProgress=*/false,
-                                                /*saveConsoleOutput=*/false, /*simplify=*/false);
+  ompl::tools::Benchmark benchmark(*scene.setup, "added time");
+  benchmark.addPlanner(std::make_shared<SpinFor>(scene.setup->getSpaceInformation(), solves));
+  const ompl::tools::Benchmark::Request request(
+      1.0 + *std::max_element(solves.begin(), solves.end()), 4096.0,
+      static_cast<unsigned>(solves.size()), 0.05, /*displayProgress=*/false,
+      /*saveConsoleOutput=*/false, /*simplify=*/false);
   benchmark.benchmark(request);
   std::vector<double> extra;
-  for (const auto& run : benchmark.getRecordedExperimentData().planners.front().runs) {
-    const auto it = run.find("time REAL");
-    if (it != run.end()) extra.push_back(std::atof(it->second.c_str()) - spin);
+  const auto& runs = benchmark.getRecordedExperimentData().planners.front().runs;
+  for (std::size_t r = 0; r < runs.size(); ++r) {
+    const auto it = runs[r].find("time REAL");
+    if (it != runs[r].end()) extra.push_back(std::atof(it->second.c_str()) - solves[r]);
   }
   return median(extra);
 }
@@ -185,9 +192,10 @@ int run(int argc, char** argv) {
   if (!(resolution > 0) || runs < 1) throw InvalidArgument("RESOLUTION must be > 0, RUNS >= 1");
   ompl::msg::setLogLevel(ompl::msg::LOG_NONE);  // (each scene load re-seeds: a warning)
   const double clock_pair = clockPairSeconds();
-  std::printf("%s at %g m, %s rounding, %s, %d runs each (clock reads per check: %.0f ns, "
-              "subtracted)\n",
-              argv[1], resolution, toString(rounding), planner.c_str(), runs, clock_pair * 1e9);
+  std::printf(
+      "%s at %g m, %s rounding, %s, %d runs each (clock reads per check: %.0f ns, "
+      "subtracted)\n",
+      argv[1], resolution, toString(rounding), planner.c_str(), runs, clock_pair * 1e9);
   std::printf("%-13s %7s %9s %9s %9s %9s %9s %9s\n", "checker", "solved", "solve ms", "mean ms",
               "checks", "check ms", "us/check", "rest ms");
   const char* checkers[] = {"octree-fused", "fcl"};
@@ -201,23 +209,22 @@ int run(int argc, char** argv) {
                 per_check * 1e6, mean(s.rest) * 1e3);
   }
   auto ratio = [](double a, double b) { return b > 0 ? a / b : 0.0; };
-  std::printf("FCL / octree: median solve %.2f, mean solve %.2f, checks per solve %.2f, "
-              "time per check %.2f\n",
-              ratio(median(splits[1].solve), median(splits[0].solve)),
-              ratio(mean(splits[1].solve), mean(splits[0].solve)),
-              ratio(mean(splits[1].checks), mean(splits[0].checks)),
-              ratio(mean(splits[1].check_s) / std::max(1.0, mean(splits[1].checks)),
-                    mean(splits[0].check_s) / std::max(1.0, mean(splits[0].checks))));
-  // The join waits out the thread's current 1 ms sleep, so what Benchmark adds depends on the
-  // solve's length: measured at each checker's median.
-  const double solve_octree = median(splits[0].solve), solve_fcl = median(splits[1].solve);
-  const double extra_octree = benchmarkFixedCost(argv[1], resolution, solve_octree, 100);
-  const double extra_fcl = benchmarkFixedCost(argv[1], resolution, solve_fcl, 100);
-  std::printf("ompl::tools::Benchmark's time REAL of a run that spins for the median solve is "
-              "longer by %.3f ms (octree, %.3f ms) and %.3f ms (FCL, %.3f ms), medians of 100 "
-              "runs; with that added, FCL / octree %.2f\n",
-              extra_octree * 1e3, solve_octree * 1e3, extra_fcl * 1e3, solve_fcl * 1e3,
-              ratio(solve_fcl + extra_fcl, solve_octree + extra_octree));
+  std::printf(
+      "FCL / octree: median solve %.2f, mean solve %.2f, checks per solve %.2f, "
+      "time per check %.2f\n",
+      ratio(median(splits[1].solve), median(splits[0].solve)),
+      ratio(mean(splits[1].solve), mean(splits[0].solve)),
+      ratio(mean(splits[1].checks), mean(splits[0].checks)),
+      ratio(mean(splits[1].check_s) / std::max(1.0, mean(splits[1].checks)),
+            mean(splits[0].check_s) / std::max(1.0, mean(splits[0].checks))));
+  const double extra_octree = benchmarkAddedTime(argv[1], resolution, splits[0].solve);
+  const double extra_fcl = benchmarkAddedTime(argv[1], resolution, splits[1].solve);
+  std::printf(
+      "ompl::tools::Benchmark's time REAL of runs that spin for the same solve times is "
+      "longer by a median %.3f ms (octree) and %.3f ms (FCL); with those added to the "
+      "median solves, FCL / octree %.2f\n",
+      extra_octree * 1e3, extra_fcl * 1e3,
+      ratio(median(splits[1].solve) + extra_fcl, median(splits[0].solve) + extra_octree));
   return 0;
 }
 
