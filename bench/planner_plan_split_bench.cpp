@@ -113,7 +113,28 @@ double clockPairSeconds() {
 struct Split {
   int solved = 0;
   std::vector<double> solve, checks, check_s, rest;
+  double benchmark_added = 0;  // what Benchmark's "time REAL" adds to runs of these lengths
 };
+
+// What Benchmark's "time REAL" adds to runs that spin for the given solve times (the join waits
+// out the thread's current 1 ms sleep, so it depends on each run's length): the median over as
+// many runs as there are times. Runs on the scene's own set-up (the planner never checks).
+double benchmarkAddedTime(ompl::geometric::SimpleSetup& ss, const std::vector<double>& solves) {
+  ompl::tools::Benchmark benchmark(ss, "added time");
+  benchmark.addPlanner(std::make_shared<SpinFor>(ss.getSpaceInformation(), solves));
+  const ompl::tools::Benchmark::Request request(
+      1.0 + *std::max_element(solves.begin(), solves.end()), 4096.0,
+      static_cast<unsigned>(solves.size()), 0.05, /*displayProgress=*/false,
+      /*saveConsoleOutput=*/false, /*simplify=*/false);
+  benchmark.benchmark(request);
+  std::vector<double> extra;
+  const auto& runs = benchmark.getRecordedExperimentData().planners.front().runs;
+  for (std::size_t r = 0; r < runs.size(); ++r) {
+    const auto it = runs[r].find("time REAL");
+    if (it != runs[r].end()) extra.push_back(std::atof(it->second.c_str()) - solves[r]);
+  }
+  return median(extra);
+}
 
 Split measure(const std::string& scene_path, double resolution, Rounding rounding,
               const std::string& checker, const std::string& planner_name, int runs,
@@ -148,36 +169,14 @@ Split measure(const std::string& scene_path, double resolution, Rounding roundin
     if (status == ob::PlannerStatus::EXACT_SOLUTION) ++split.solved;
     const double checks = static_cast<double>(timed->checks());
     const double check_s = std::max(0.0, timed->checkSeconds() - checks * clock_pair);
-    split.solve.push_back(solve - checks * clock_pair);
+    const double own = solve - checks * clock_pair;  // without the wrapper's clock reads
+    split.solve.push_back(own);
     split.checks.push_back(checks);
     split.check_s.push_back(check_s);
-    split.rest.push_back(solve - checks * clock_pair - check_s);
+    split.rest.push_back(own - check_s);
   }
+  split.benchmark_added = benchmarkAddedTime(ss, split.solve);
   return split;
-}
-
-// What Benchmark's "time REAL" adds to runs that spin for the given solve times (the join waits
-// out the thread's current 1 ms sleep, so it depends on each run's length): the median over as
-// many runs as there are times.
-double benchmarkAddedTime(const std::string& scene_path, double resolution,
-                          const std::vector<double>& solves) {
-  SceneOverrides overrides;
-  overrides.resolution = resolution;
-  PlanningScene scene = loadPlanningScene(scene_path, overrides);
-  ompl::tools::Benchmark benchmark(*scene.setup, "added time");
-  benchmark.addPlanner(std::make_shared<SpinFor>(scene.setup->getSpaceInformation(), solves));
-  const ompl::tools::Benchmark::Request request(
-      1.0 + *std::max_element(solves.begin(), solves.end()), 4096.0,
-      static_cast<unsigned>(solves.size()), 0.05, /*displayProgress=*/false,
-      /*saveConsoleOutput=*/false, /*simplify=*/false);
-  benchmark.benchmark(request);
-  std::vector<double> extra;
-  const auto& runs = benchmark.getRecordedExperimentData().planners.front().runs;
-  for (std::size_t r = 0; r < runs.size(); ++r) {
-    const auto it = runs[r].find("time REAL");
-    if (it != runs[r].end()) extra.push_back(std::atof(it->second.c_str()) - solves[r]);
-  }
-  return median(extra);
 }
 
 int run(int argc, char** argv) {
@@ -217,8 +216,7 @@ int run(int argc, char** argv) {
       ratio(mean(splits[1].checks), mean(splits[0].checks)),
       ratio(mean(splits[1].check_s) / std::max(1.0, mean(splits[1].checks)),
             mean(splits[0].check_s) / std::max(1.0, mean(splits[0].checks))));
-  const double extra_octree = benchmarkAddedTime(argv[1], resolution, splits[0].solve);
-  const double extra_fcl = benchmarkAddedTime(argv[1], resolution, splits[1].solve);
+  const double extra_octree = splits[0].benchmark_added, extra_fcl = splits[1].benchmark_added;
   std::printf(
       "ompl::tools::Benchmark's time REAL of runs that spin for the same solve times is "
       "longer by a median %.3f ms (octree) and %.3f ms (FCL); with those added to the "

@@ -328,6 +328,8 @@ double property(const std::map<std::string, std::string>& run, const std::string
 // solve time next to it ("solve time REAL").
 // Everything else is the wrapped planner's: name, specs, parameters and progress properties (the
 // latter two hold callbacks bound to it), problem definition, set-up and planner data.
+constexpr const char* kSolveTimeProperty = "solve time REAL";  // written per run, read back below
+
 class TimedPlanner : public ob::Planner {
  public:
   explicit TimedPlanner(ob::PlannerPtr inner)
@@ -402,7 +404,7 @@ PlanRow runPlanning(const StudyScene& scene, const PlanSetting& setting,
       [timed](const ob::PlannerPtr&, ompl::tools::Benchmark::RunProperties& run) {
         std::ostringstream seconds;
         seconds << std::setprecision(9) << timed->lastSolveSeconds();
-        run["solve time REAL"] = seconds.str();
+        run[kSolveTimeProperty] = seconds.str();
       });
   ompl::tools::Benchmark::Request request(row.time_limit, 4096.0, options.runs, 0.05,
                                           /*displayProgress=*/false,
@@ -428,7 +430,7 @@ PlanRow runPlanning(const StudyScene& scene, const PlanSetting& setting,
                           property(run, "approximate solution BOOLEAN", 0) == 0;
       // A failed run costs the whole limit (it may also fail early, e.g. on an invalid start).
       times.push_back(solved ? std::min(time, row.time_limit) : row.time_limit);
-      const double solve = property(run, "solve time REAL", time);
+      const double solve = property(run, kSolveTimeProperty, time);
       solve_times.push_back(solved ? std::min(solve, row.time_limit) : row.time_limit);
       if (!solved) continue;
       ++row.solved;
