@@ -39,7 +39,7 @@ options:
   --self-link-resolution METRES
                              finer link trees for self-collision pairs only (fewer false
                              positives of near self pairs; docs/trade-off.md)
-  --self-pair-tables on|off  joint-space tables for self pairs of 1-2 joints (default off;
+  --self-pair-tables on|off  joint-space tables for self pairs of 1-2 variables (default off;
                              docs/planner.md, "Self-pair tables")
   --interpolation METRES     plan: spacing of the written path's states (default: OMPL's)
   --verbose                  OMPL's log messages on stderr

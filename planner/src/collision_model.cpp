@@ -889,7 +889,7 @@ std::string CollisionModelReport::toString() const {
     out << "\nself-pair tables (joint space, FCL-certified cells): " << self_pair_tables.size();
   }
   for (const SelfPairTableReport& t : self_pair_tables) {
-    out << "\n  " << t.link_a << "-" << t.link_b << ": " << t.variables << " joint"
+    out << "\n  " << t.link_a << "-" << t.link_b << ": " << t.variables << " variable"
         << (t.variables == 1 ? "" : "s") << ", depth " << t.depth << ", " << t.nodes << " nodes, "
         << t.bytes << " bytes, certified free " << 100 * t.free_fraction << " %, colliding "
         << 100 * t.colliding_fraction << " % (" << t.classified << " FCL cells, " << t.build_seconds

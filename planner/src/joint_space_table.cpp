@@ -1,5 +1,6 @@
 #include "octomotion/planner/joint_space_table.h"
 
+#include <algorithm>
 #include <cmath>
 #include <deque>
 #include <string>
@@ -28,8 +29,14 @@ JointSpaceTable JointSpaceTable::build(const std::vector<Dim>& dims, const Class
       throw InvalidArgument("joint-space table: dimension " + std::to_string(d) +
                             " needs a finite range with upper > lower");
     }
-    t.dims_[static_cast<std::size_t>(d)] = dim;
-    t.scale_[static_cast<std::size_t>(d)] = t.cells_per_dim_ / (dim.upper - dim.lower);
+    if (dim.stretch < 0 || dim.stretch >= t.depth_) {
+      throw InvalidArgument("joint-space table: dimension " + std::to_string(d) +
+                            " needs a stretch in [0, " + std::to_string(t.depth_) + ")");
+    }
+    const auto s = static_cast<std::size_t>(d);
+    t.dims_[s] = dim;
+    t.range_cells_[s] = std::ldexp(t.cells_per_dim_, -dim.stretch);
+    t.scale_[s] = t.range_cells_[s] / (dim.upper - dim.lower);
   }
 
   // A cell: `size` finest cells per side from integer corner ix; `slot` is where its verdict
@@ -41,20 +48,24 @@ JointSpaceTable JointSpaceTable::build(const std::vector<Dim>& dims, const Class
     int level;  // side = 2^level finest cells; 0 cannot be split
   };
   const std::size_t fan = std::size_t{1} << t.dims_count_;
-  std::deque<Pending> queue{{kRootSlot, {0, 0, 0}, t.depth_}};
+  std::deque<Pending> queue{{kRootSlot, {0, 0, 0}, t.depth_}}, later;
   double centre[kMaxDims] = {0, 0, 0};
   double half[kMaxDims] = {0, 0, 0};
-  while (!queue.empty()) {
-    const Pending p = queue.front();
-    queue.pop_front();
+  while (!queue.empty() || !later.empty()) {
+    std::deque<Pending>& from = queue.empty() ? later : queue;
+    const Pending p = from.front();
+    from.pop_front();
     const double side = std::ldexp(1.0, p.level);
+    double share = 1;  // of the box [lower, upper) in this cell
     for (int d = 0; d < t.dims_count_; ++d) {
       const auto s = static_cast<std::size_t>(d);
       half[d] = side / 2 / t.scale_[s];
       centre[d] = t.dims_[s].lower + (p.ix[s] + side / 2) / t.scale_[s];
+      share *=
+          std::max(0.0, std::min(p.ix[s] + side, t.range_cells_[s]) - p.ix[s]) / t.range_cells_[s];
     }
     Verdict v;
-    if (t.classified_ < limits.max_cells) {
+    if (share > 0 && t.classified_ < limits.max_cells) {  // beyond the range: never read
       v = classify(centre, half);
       ++t.classified_;
     }
@@ -69,11 +80,10 @@ JointSpaceTable JointSpaceTable::build(const std::vector<Dim>& dims, const Class
         for (int d = 0; d < t.dims_count_; ++d) {
           if (c & (std::size_t{1} << d)) child.ix[static_cast<std::size_t>(d)] += step;
         }
-        queue.push_back(child);
+        (v.later ? later : queue).push_back(child);
       }
     } else {
-      // Fraction of the box's volume: (side / cells_per_dim)^k.
-      t.volume_[v.cell] += std::pow(side / t.cells_per_dim_, t.dims_count_);
+      t.volume_[v.cell] += share;
     }
     if (p.slot == kRootSlot) {
       t.root_ = value;

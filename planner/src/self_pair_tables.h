@@ -25,11 +25,13 @@ struct SelfPairLink {
 struct SelfPairTableOptions {
   // Largest motion of one link relative to the other within a finest cell: the width of the
   // band around contact that the table leaves to the octree test.
-  double tolerance = 1e-3;
-  std::size_t max_cells = 40000;  // FCL classifications per pair
+  double tolerance = 5e-4;
+  std::size_t max_cells = 60000;  // FCL classifications per pair
 };
 
-// The variables (indices into q) the relative pose of links a and b depends on.
+// The variables (indices into q) a pair's table spans: those the relative pose of links a and b
+// depends on, less one whose joint only turns a or b about an axis its solid is symmetric about
+// (spheres and cylinders on the axis).
 std::vector<int> pairVariables(const RobotModel& robot, int link_a, int link_b);
 
 // Every variable at the middle of its limits (continuous ones at 0): the configuration whose

@@ -6,7 +6,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 #include <random>
+#include <string>
 
 #include "joint_states.h"
 #include "octomotion/error.h"
@@ -125,6 +127,148 @@ TEST(JointSpaceTable, RejectsBadDimensionsAndDepths) {
   EXPECT_THROW(JointSpaceTable::build({{0, 0, 1}}, never, deep), InvalidArgument);
 }
 
+TEST(JointSpaceTable, PeriodicDimensionsReadEveryTurnAlike) {
+  // f(x) = sin(x) - 0.5 over one turn, |f'| <= 1: colliding where f > 0.
+  JointSpaceTable::BuildLimits limits;
+  limits.max_depth = 12;
+  const JointSpaceTable t = JointSpaceTable::build(
+      {{0, -M_PI, M_PI, true}},
+      [](const double* c, const double* h) -> JointSpaceTable::Verdict {
+        const double f = std::sin(c[0]) - 0.5;
+        if (f > h[0]) return {JointSpaceTable::kColliding, false};
+        if (-f > h[0]) return {JointSpaceTable::kFree, false};
+        return {JointSpaceTable::kUnknown, true};
+      },
+      limits);
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(-3 * M_PI, 3 * M_PI);  // three turns
+  int known = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const double x[1] = {u(rng)};
+    const JointSpaceTable::Cell c = t.lookup(x);
+    if (c == JointSpaceTable::kColliding) {
+      ASSERT_GT(std::sin(x[0]), 0.5) << x[0];
+    }
+    if (c == JointSpaceTable::kFree) {
+      ASSERT_LT(std::sin(x[0]), 0.5) << x[0];
+    }
+    known += c != JointSpaceTable::kUnknown;
+    const double turned[1] = {x[0] + 2 * M_PI};
+    const JointSpaceTable::Cell same = t.lookup(turned);
+    if (same != c) {  // only where rounding puts the two values in neighbouring cells
+      ASSERT_NE(same, JointSpaceTable::kColliding + JointSpaceTable::kFree - c) << x[0];
+    }
+  }
+  EXPECT_GT(known, 19000);  // values outside [-pi, pi) are in the table
+  for (const double bad : {std::nan(""), HUGE_VAL, -HUGE_VAL}) {
+    const double x[1] = {bad};
+    EXPECT_EQ(t.lookup(x), JointSpaceTable::kUnknown);
+  }
+}
+
+// f(x, y) = |(x, y / 8)| - 0.5 on [-1, 1]^2: y moves f 8 times less than x, so in cubic cells
+// each split along y halves a share of the bound 8 times smaller than x's; stretching y's side
+// by 2^3 evens the shares.
+JointSpaceTable flatBallTable(int stretch, std::size_t max_cells) {
+  JointSpaceTable::BuildLimits limits;
+  limits.max_depth = 12;
+  limits.max_cells = max_cells;
+  JointSpaceTable::Dim x{0, -1.0, 1.0}, y{1, -1.0, 1.0};
+  y.stretch = stretch;
+  return JointSpaceTable::build(
+      {x, y},
+      [](const double* c, const double* h) -> JointSpaceTable::Verdict {
+        const double f = std::hypot(c[0], c[1] / 8) - 0.5;
+        const double bound = h[0] + h[1] / 8;
+        if (f > bound) return {JointSpaceTable::kFree, false};
+        if (-f > bound) return {JointSpaceTable::kColliding, false};
+        return {JointSpaceTable::kUnknown, true};
+      },
+      limits);
+}
+
+TEST(JointSpaceTable, AStretchedSideSpendsTheBudgetWhereItMatters) {
+  const JointSpaceTable cubic = flatBallTable(0, 3000), stretched = flatBallTable(3, 3000);
+  std::mt19937_64 rng(9);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int i = 0; i < 20000; ++i) {
+    const double p[2] = {u(rng), u(rng)};
+    const double f = std::hypot(p[0], p[1] / 8) - 0.5;
+    for (const JointSpaceTable* t : {&cubic, &stretched}) {
+      const JointSpaceTable::Cell c = t->lookup(p);
+      if (c == JointSpaceTable::kFree) {
+        ASSERT_GT(f, 0);
+      }
+      if (c == JointSpaceTable::kColliding) {
+        ASSERT_LT(f, 0);
+      }
+    }
+    // Beyond the range, in the stretched side: unknown or a certificate that holds there too.
+    const double beyond[2] = {p[0], 1.0 + std::abs(p[1]) * 7};
+    const double fb = std::hypot(beyond[0], beyond[1] / 8) - 0.5;
+    const JointSpaceTable::Cell cb = stretched.lookup(beyond);
+    if (cb == JointSpaceTable::kFree) {
+      ASSERT_GT(fb, 0);
+    }
+    if (cb == JointSpaceTable::kColliding) {
+      ASSERT_LT(fb, 0);
+    }
+  }
+  for (const JointSpaceTable* t : {&cubic, &stretched}) {
+    const auto& f = t->volumeFractions();
+    EXPECT_NEAR(f[0] + f[1] + f[2], 1.0, 1e-12);  // of the range, not of the stretched side
+  }
+  EXPECT_LT(stretched.volumeFractions()[JointSpaceTable::kUnknown],
+            cubic.volumeFractions()[JointSpaceTable::kUnknown] / 2);
+  JointSpaceTable::Dim bad{0, 0, 1};
+  bad.stretch = 12;  // >= depth
+  JointSpaceTable::BuildLimits limits;
+  limits.max_depth = 12;
+  const auto never = [](const double*, const double*) { return JointSpaceTable::Verdict{}; };
+  EXPECT_THROW(JointSpaceTable::build({bad}, never, limits), InvalidArgument);
+  bad.stretch = -1;
+  EXPECT_THROW(JointSpaceTable::build({bad}, never, limits), InvalidArgument);
+}
+
+TEST(JointSpaceTable, CellsSplitLaterWaitForTheBudgetTheOthersLeave) {
+  // A disc whose inside is never certified (as a pair whose contacts are too shallow for the
+  // sampled points): split at once, it takes the budget; split later, the outside (where the
+  // false positives are) is refined further.
+  auto disc = [](bool inside_later) {
+    JointSpaceTable::BuildLimits limits;
+    limits.max_depth = 10;
+    limits.max_cells = 1500;
+    return JointSpaceTable::build(
+        {{0, -1.0, 1.0}, {1, -1.0, 1.0}},
+        [inside_later](const double* c, const double* h) -> JointSpaceTable::Verdict {
+          const double f = std::hypot(c[0], c[1]) - 0.5;
+          if (f > h[0] + h[1]) return {JointSpaceTable::kFree, false};
+          return {JointSpaceTable::kUnknown, true, inside_later && f <= 0};
+        },
+        limits);
+  };
+  const JointSpaceTable even = disc(false), outside_first = disc(true);
+  std::mt19937_64 rng(13);
+  std::uniform_real_distribution<double> u(-1, 1);
+  int unknown_outside[2] = {0, 0};
+  for (int i = 0; i < 20000; ++i) {
+    const double p[2] = {u(rng), u(rng)};
+    const double f = std::hypot(p[0], p[1]) - 0.5;
+    int k = 0;
+    for (const JointSpaceTable* t : {&even, &outside_first}) {
+      const JointSpaceTable::Cell c = t->lookup(p);
+      if (c == JointSpaceTable::kFree) {
+        ASSERT_GT(f, 0);
+      }
+      if (c == JointSpaceTable::kColliding) {
+        ASSERT_LT(f, 0);
+      }
+      unknown_outside[k++] += f > 0 && c == JointSpaceTable::kUnknown;
+    }
+  }
+  EXPECT_LT(unknown_outside[1], unknown_outside[0]);
+}
+
 // --- The octo7 tables against FCL ---
 
 struct Octo7 {
@@ -202,6 +346,52 @@ TEST(SelfPairTables, NeverMissACollisionAndOnlyRemoveFalsePositives) {
       EXPECT_LT(fp_tabled, fp_plain);  // the wrist's margins go
     }
   }
+}
+
+// octo6 (cluttered_table): every checked pair of up to three variables gets a table, coarse
+// (3,000 classifications each) so the test stays quick; the certificates must hold anyway.
+TEST(SelfPairTables, Octo6TablesDropTheFlangeTurnAndNeverMissACollision) {
+  SceneOverrides overrides;
+  overrides.resolution = 0.02;
+  const PlanningScene scene = loadPlanningScene(
+      std::string(OCTOMOTION_SOURCE_DIR) + "/robots/scenes/cluttered_table.yaml", overrides);
+  CollisionModelOptions o;
+  o.resolution = 0.02;
+  o.X_WB = scene.model->baseMount();
+  const OctreeCollisionModel plain(scene.model->robot(), *scene.environment, o);
+  o.self_pair_tables = true;
+  o.self_pair_table_max_variables = 3;
+  o.self_pair_table_max_cells = 3000;
+  const OctreeCollisionModel tabled(scene.model->robot(), *scene.environment, o);
+  std::map<std::string, int> variables;
+  for (const SelfPairTableReport& t : tabled.report().self_pair_tables) {
+    variables[t.link_a + "-" + t.link_b] = t.variables;
+  }
+  // wrist_3 is a cylinder and a ball on its joint's axis: turning it moves none of its solid,
+  // so its pairs' tables leave wrist_3_joint out. wrist_2 is a mesh: it keeps wrist_2_joint.
+  EXPECT_EQ(variables["forearm_link-wrist_3_link"], 2);
+  EXPECT_EQ(variables["forearm_link-wrist_2_link"], 2);
+  EXPECT_EQ(variables["upper_arm_link-wrist_3_link"], 3);
+  EXPECT_EQ(variables["upper_arm_link-wrist_2_link"], 3);
+  EXPECT_EQ(variables.count("shoulder_link-wrist_3_link"), 0u);  // four variables
+  const RobotModel& robot = scene.model->robot();
+  const auto fcl = scene.fclModel();
+  auto exact = fcl->makeScratch();
+  CheckScratch plain_scratch = plain.makeScratch(), tabled_scratch = tabled.makeScratch();
+  const auto states = test::uniformJointStates(robot, 10000, 23);
+  int fp_plain = 0, fp_tabled = 0;
+  for (std::size_t i = 0; i < states.size(); ++i) {
+    const auto& q = states[i];
+    fcl->setConfiguration(q.data(), q.size(), Eigen::Isometry3d::Identity(), *exact);
+    const bool truth = fcl->inCollision(*exact);
+    const bool a = plain.inCollision(q.data(), q.size(), {}, CheckerPath::kFused, plain_scratch);
+    const bool b = tabled.inCollision(q.data(), q.size(), {}, CheckerPath::kFused, tabled_scratch);
+    ASSERT_TRUE(!truth || b) << "missed collision at state " << i;
+    ASSERT_TRUE(!b || a) << "the table added a contact at state " << i;
+    fp_plain += a && !truth;
+    fp_tabled += b && !truth;
+  }
+  EXPECT_LT(fp_tabled, fp_plain);
 }
 
 TEST(SelfPairTables, BadToleranceIsRejected) {

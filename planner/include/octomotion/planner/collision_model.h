@@ -102,17 +102,18 @@ struct CollisionModelOptions {
   EnvironmentPreTest environment_pre_test = EnvironmentPreTest::kAuto;
   std::uint32_t self_broad_phase_leaf_capacity = kSelfBroadPhaseLeafCapacity;  // N (>= 1)
   // Self pairs whose relative pose depends on at most self_pair_table_max_variables joint
-  // variables (<= JointSpaceTable::kMaxDims; a wrist: q6, q7), and whose tree test runs for at
-  // least kSelfPairTableMinShare of their joint space, get a JointSpaceTable classified with FCL
-  // on the exact geometry at build time: states in a certified cell skip the octree pair test,
-  // the rest take it (docs/planner.md, "Self-pair tables"). Conservative rounding only (the
-  // tables use conservative trees as their inside/outside oracle). The tolerance is the widest
-  // relative motion within a finest cell: the band around contact left to the octree test. A
-  // 3-joint table takes seconds to classify. Off by default: classifying costs ~1 s per model on
-  // octo7 and ~13-15 s on octo6 (docs/planner.md).
+  // variables (<= JointSpaceTable::kMaxDims; a joint that turns a link about an axis its solid
+  // is symmetric about does not count), and whose tree test runs for at least
+  // kSelfPairTableMinShare of their joint space, get a JointSpaceTable classified with FCL on
+  // the exact geometry at build time: states in a certified cell skip the octree pair test, the
+  // rest take it (docs/planner.md, "Self-pair tables"). Conservative rounding only (the tables
+  // use conservative trees as their inside/outside oracle). The tolerance is the widest change
+  // of the pair's distance within a finest cell: the band around contact left to the octree
+  // test. 3-variable tables need far more cells than the budget to certify near contacts. Off
+  // by default: classifying costs ~20 s per model on octo6 (five tables; octo7's one, 0.1 s).
   bool self_pair_tables = false;
-  double self_pair_table_tolerance = 1e-3;        // metres, > 0
-  std::size_t self_pair_table_max_cells = 40000;  // FCL classifications per pair
+  double self_pair_table_tolerance = 5e-4;        // metres, > 0
+  std::size_t self_pair_table_max_cells = 60000;  // FCL classifications per pair
   std::size_t self_pair_table_max_variables = 2;
   WarningSink warnings;
 };

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <vector>
@@ -22,8 +23,18 @@ class JointSpaceTable {
 
   struct Dim {
     int joint = -1;    // index into RobotData::joint_values holding this variable's value
-    double lower = 0;  // the table covers [lower, upper]; values outside read kUnknown
+    double lower = 0;  // the table covers [lower, upper); values outside read kUnknown
     double upper = 0;
+    // An angle whose pair looks the same a period on: values are first brought into
+    // [lower, upper) by whole periods (upper - lower), so a joint with limits of +-2 pi is
+    // classified over one turn and every value of it is in the table.
+    bool periodic = false;
+    // The tree's cells are cubes in joint space; a variable that moves the pair little needs
+    // coarser cells than the others. Its side of the tree is (upper - lower) * 2^stretch, so
+    // the first `stretch` splits along it only separate the range from the space beyond it,
+    // whose cells are never classified (kUnknown). Values there read kUnknown or a cell whose
+    // certificate covers them too.
+    int stretch = 0;
   };
   // What the builder learns about one cell (centre and half-widths per dimension): a certified
   // kFree/kColliding, or kUnknown; `split` asks for the cell to be subdivided (when depth and
@@ -31,6 +42,9 @@ class JointSpaceTable {
   struct Verdict {
     Cell cell = kUnknown;
     bool split = false;
+    // Split only once the budget has served every cell not marked so (a cell whose centre is
+    // in contact: refining it serves speed, refining the others removes false positives).
+    bool later = false;
   };
   using Classifier = std::function<Verdict(const double* centre, const double* half)>;
 
@@ -40,9 +54,10 @@ class JointSpaceTable {
   };
 
   JointSpaceTable() = default;
-  // Breadth first from the whole box, so a budget that runs out leaves an evenly refined table.
-  // Throws InvalidArgument for 0 or more than kMaxDims dimensions, an empty or non-finite range
-  // or a depth outside [1, kMaxDepth].
+  // Breadth first from the whole box, so a budget that runs out leaves an evenly refined table
+  // (cells split `later` after all others).
+  // Throws InvalidArgument for 0 or more than kMaxDims dimensions, an empty or non-finite range,
+  // a stretch outside [0, depth) or a depth outside [1, kMaxDepth].
   static JointSpaceTable build(const std::vector<Dim>& dims, const Classifier& classify,
                                const BuildLimits& limits);
 
@@ -51,8 +66,9 @@ class JointSpaceTable {
   Cell lookup(const double* joint_values) const {
     std::uint32_t ix[kMaxDims] = {0, 0, 0};
     for (int d = 0; d < dims_count_; ++d) {
-      const double x = (joint_values[dims_[d].joint] - dims_[d].lower) * scale_[d];
-      // Outside the range, or NaN (every comparison false): not in the table.
+      double x = (joint_values[dims_[d].joint] - dims_[d].lower) * scale_[d];
+      if (dims_[d].periodic) x -= range_cells_[d] * std::floor(x / range_cells_[d]);
+      // Outside the range, or NaN or infinite (every comparison false): not in the table.
       if (!(x >= 0 && x < cells_per_dim_)) return kUnknown;
       ix[d] = static_cast<std::uint32_t>(x);
     }
@@ -79,7 +95,8 @@ class JointSpaceTable {
  private:
   static constexpr std::uint32_t kFirstNode = 3;
   std::array<Dim, kMaxDims> dims_{};
-  std::array<double, kMaxDims> scale_{};  // cells_per_dim_ / (upper - lower)
+  std::array<double, kMaxDims> scale_{};        // cells per unit of the variable
+  std::array<double, kMaxDims> range_cells_{};  // finest cells in [lower, upper)
   int dims_count_ = 0;
   int depth_ = 1;
   double cells_per_dim_ = 2;
