@@ -2,10 +2,13 @@
 // an arm's full check: the same scene and uniform states checked by the fused octree checker
 // without and with them, and by FCL, in one run. Prints per model the build time, the mean check
 // time (second pass over the states), false-positive rate (of the states FCL finds free, as in
-// the trade study) and misses against FCL, and FCL's mean. A plain program like tradeoff_bench.
+// the trade study) and misses against FCL, and FCL's mean, and per table its variables, depth,
+// classifications, certified shares and build time. A plain program like tradeoff_bench.
 // Usage:
-//   build/bench/planner_self_pair_tables_bench SCENE RESOLUTION [STATES] [SELF_RATIO]
+//   build/bench/planner_self_pair_tables_bench SCENE RESOLUTION [STATES] [SELF_RATIO] [LINK_RATIO]
 //   e.g. robots/scenes/bookshelf.yaml 0.005 20000
+// SELF_RATIO and LINK_RATIO (default 1) set the self-pair and link trees' voxels as fractions of
+// RESOLUTION, like tradeoff_bench's --self-link-ratio and --link-ratio.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -27,14 +30,18 @@ double seconds(Clock::time_point a, Clock::time_point b) {
 
 int run(int argc, char** argv) {
   if (argc < 3) {
-    std::fprintf(stderr, "usage: %s SCENE RESOLUTION [STATES] [SELF_RATIO]\n", argv[0]);
+    std::fprintf(stderr, "usage: %s SCENE RESOLUTION [STATES] [SELF_RATIO] [LINK_RATIO]\n",
+                 argv[0]);
     return 2;
   }
   const double resolution = std::atof(argv[2]);
   const int count = argc > 3 ? std::atoi(argv[3]) : 20000;
   const double self_ratio = argc > 4 ? std::atof(argv[4]) : 1.0;
-  if (!(resolution > 0) || !(self_ratio > 0) || count < 1) {
-    throw InvalidArgument("RESOLUTION and SELF_RATIO must be > 0, STATES >= 1");
+  const double link_ratio = argc > 5 ? std::atof(argv[5]) : 1.0;
+  if (!(resolution > 0) || !(self_ratio > 0 && self_ratio <= 1) ||
+      !(link_ratio > 0 && link_ratio <= 1) || count < 1) {
+    throw InvalidArgument(
+        "RESOLUTION must be > 0, SELF_RATIO and LINK_RATIO in (0, 1], STATES >= 1");
   }
   SceneOverrides overrides;
   overrides.resolution = resolution;
@@ -62,12 +69,20 @@ int run(int argc, char** argv) {
   for (const bool tables : {false, true}) {
     CollisionModelOptions options;
     options.resolution = resolution;
-    if (self_ratio != 1.0) options.self_link_resolution = resolution * self_ratio;
+    options.link_resolution = resolution * link_ratio;
+    options.self_link_resolution = resolution * self_ratio;
     options.X_WB = scene.model->baseMount();
     options.self_pair_tables = tables;
     const auto b0 = Clock::now();
     const OctreeCollisionModel model(robot, *scene.environment, options);
     const double build = seconds(b0, Clock::now());
+    for (const SelfPairTableReport& r : model.report().self_pair_tables) {
+      std::printf(
+          "    table %s-%s: %d variables, depth %d, %zu classified, free %.1f %%, "
+          "colliding %.1f %%, %.2f s\n",
+          r.link_a.c_str(), r.link_b.c_str(), r.variables, r.depth, r.classified,
+          100 * r.free_fraction, 100 * r.colliding_fraction, r.build_seconds);
+    }
     CheckScratch scratch = model.makeScratch();
     int false_positives = 0, missed = 0;
     double check_seconds = 0;
