@@ -4,10 +4,12 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <exception>
 #include <limits>
 #include <map>
 #include <random>
 #include <sstream>
+#include <thread>
 
 #include "collision_meshes.h"
 #include "octomotion/motion/box_overlap.h"
@@ -458,6 +460,16 @@ OctreeCollisionModel::OctreeCollisionModel(RobotModel robot, const EnvironmentGe
     }
     return &it->second;
   };
+  // The pairs that get a table; their classifications run in parallel below (each job owns its
+  // FCL objects and robot data; the oracles are made first, so the jobs only read shared state).
+  struct TableJob {
+    std::size_t pair = 0;  // index into pairs_
+    detail::SelfPairLink a, b;
+    std::optional<JointSpaceTable> table;
+    double seconds = 0;
+    std::exception_ptr error;
+  };
+  std::vector<TableJob> jobs;
   for (const auto& [a, b] : robot_.checkedPairs()) {
     const int sa = link_slot_[static_cast<std::size_t>(a)];
     const int sb = link_slot_[static_cast<std::size_t>(b)];
@@ -471,29 +483,53 @@ OctreeCollisionModel::OctreeCollisionModel(RobotModel robot, const EnvironmentGe
     const std::vector<int> vars = tables ? detail::pairVariables(robot_, a, b) : std::vector<int>{};
     if (tables && vars.size() <= options.self_pair_table_max_variables &&
         treeTestShare(pair, vars) >= kSelfPairTableMinShare) {
-      const auto t0 = Clock::now();
       auto side = [&](int link) {
         const auto s = static_cast<std::size_t>(link);
         return detail::SelfPairLink{link, element_meshes[s], oracle(link), geometry_extent[s]};
       };
-      if (auto table = detail::buildSelfPairTable(robot_, side(a), side(b), table_options)) {
-        SelfPairTableReport r;
-        r.link_a = robot_.link(a).name;
-        r.link_b = robot_.link(b).name;
-        r.variables = table->dims();
-        r.depth = table->depth();
-        r.nodes = table->nodeCount();
-        r.bytes = table->bytes();
-        r.classified = table->classified();
-        r.free_fraction = table->volumeFractions()[JointSpaceTable::kFree];
-        r.colliding_fraction = table->volumeFractions()[JointSpaceTable::kColliding];
-        pair_tables_.push_back(std::make_unique<const JointSpaceTable>(std::move(*table)));
-        pair.table = pair_tables_.back().get();
-        r.build_seconds = secondsSince(t0);
-        report_.self_pair_tables.push_back(std::move(r));
-      }
+      jobs.push_back({pairs_.size(), side(a), side(b), std::nullopt, 0, nullptr});
     }
     pairs_.push_back(pair);
+  }
+  std::atomic<std::size_t> next_job{0};
+  auto work = [&] {
+    for (std::size_t j; (j = next_job++) < jobs.size();) {
+      TableJob& job = jobs[j];
+      try {
+        const auto t0 = Clock::now();
+        job.table = detail::buildSelfPairTable(robot_, job.a, job.b, table_options);
+        job.seconds = secondsSince(t0);
+      } catch (...) {
+        job.error = std::current_exception();
+      }
+    }
+  };
+  {
+    const std::size_t threads_wanted =
+        std::min<std::size_t>(jobs.size(), std::max(1u, std::thread::hardware_concurrency()));
+    std::vector<std::thread> helpers;
+    for (std::size_t t = 1; t < threads_wanted; ++t) helpers.emplace_back(work);
+    work();
+    for (std::thread& t : helpers) t.join();
+  }
+  for (TableJob& job : jobs) {
+    if (job.error) std::rethrow_exception(job.error);
+    if (!job.table) continue;
+    const JointSpaceTable& table = *job.table;
+    SelfPairTableReport r;
+    r.link_a = robot_.link(job.a.link).name;
+    r.link_b = robot_.link(job.b.link).name;
+    r.variables = table.dims();
+    r.depth = table.depth();
+    r.nodes = table.nodeCount();
+    r.bytes = table.bytes();
+    r.classified = table.classified();
+    r.free_fraction = table.volumeFractions()[JointSpaceTable::kFree];
+    r.colliding_fraction = table.volumeFractions()[JointSpaceTable::kColliding];
+    r.build_seconds = job.seconds;
+    pair_tables_.push_back(std::make_unique<const JointSpaceTable>(std::move(*job.table)));
+    pairs_[job.pair].table = pair_tables_.back().get();
+    report_.self_pair_tables.push_back(std::move(r));
   }
   report_.self_pairs = pairs_.size();
 
