@@ -110,7 +110,8 @@ struct CollisionModelOptions {
   // use conservative trees as their inside/outside oracle). The tolerance is the widest change
   // of the pair's distance within a finest cell: the band around contact left to the octree
   // test. 3-variable tables need far more cells than the budget to certify near contacts. Off
-  // by default: classifying costs ~20 s per model on octo6 (five tables; octo7's one, 0.1 s).
+  // by default: classifying octo6's five tables costs ~20 s of CPU per model (in parallel: 10.5 s
+  // on 2 cores; octo7's one table 0.06 s).
   bool self_pair_tables = false;
   double self_pair_table_tolerance = 5e-4;        // metres, > 0
   std::size_t self_pair_table_max_cells = 60000;  // FCL classifications per pair
