@@ -9,6 +9,7 @@
 #include <map>
 #include <random>
 #include <sstream>
+#include <system_error>
 #include <thread>
 
 #include "collision_meshes.h"
@@ -508,7 +509,13 @@ OctreeCollisionModel::OctreeCollisionModel(RobotModel robot, const EnvironmentGe
     const std::size_t threads_wanted =
         std::min<std::size_t>(jobs.size(), std::max(1u, std::thread::hardware_concurrency()));
     std::vector<std::thread> helpers;
-    for (std::size_t t = 1; t < threads_wanted; ++t) helpers.emplace_back(work);
+    for (std::size_t t = 1; t < threads_wanted; ++t) {
+      try {
+        helpers.emplace_back(work);
+      } catch (const std::system_error&) {
+        break;  // no more threads to be had: fewer workers, the same tables
+      }
+    }
     work();
     for (std::thread& t : helpers) t.join();
   }
