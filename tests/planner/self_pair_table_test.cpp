@@ -20,6 +20,18 @@
 namespace octomotion {
 namespace {
 
+// A certified cell agrees with the signed distance-like f at the point: free where f > 0,
+// colliding where f < 0 (unknown cells claim nothing).
+::testing::AssertionResult certifiedRight(JointSpaceTable::Cell c, double f) {
+  if (c == JointSpaceTable::kFree && !(f > 0)) {
+    return ::testing::AssertionFailure() << "certified free where f = " << f;
+  }
+  if (c == JointSpaceTable::kColliding && !(f < 0)) {
+    return ::testing::AssertionFailure() << "certified colliding where f = " << f;
+  }
+  return ::testing::AssertionSuccess();
+}
+
 // A ball of radius r about the origin in k dimensions, classified the way the self-pair builder
 // classifies a pair: d(centre) against the largest change of d within the cell (|grad d| = 1,
 // so the sum of half-widths bounds it).
@@ -104,12 +116,7 @@ TEST(JointSpaceTable, ARunOutBudgetLeavesCellsUnknownNeverWrong) {
     const double p[2] = {u(rng), u(rng)};
     const double distance = std::hypot(p[0], p[1]) - 0.5;
     const JointSpaceTable::Cell c = small.lookup(p);
-    if (c == JointSpaceTable::kFree) {
-      ASSERT_GT(distance, 0);
-    }
-    if (c == JointSpaceTable::kColliding) {
-      ASSERT_LT(distance, 0);
-    }
+    ASSERT_TRUE(certifiedRight(c, distance));
   }
   EXPECT_GT(small.volumeFractions()[JointSpaceTable::kUnknown],
             ballTable(2, 0.5, 9).volumeFractions()[JointSpaceTable::kUnknown]);
@@ -146,12 +153,7 @@ TEST(JointSpaceTable, PeriodicDimensionsReadEveryTurnAlike) {
   for (int i = 0; i < 20000; ++i) {
     const double x[1] = {u(rng)};
     const JointSpaceTable::Cell c = t.lookup(x);
-    if (c == JointSpaceTable::kColliding) {
-      ASSERT_GT(std::sin(x[0]), 0.5) << x[0];
-    }
-    if (c == JointSpaceTable::kFree) {
-      ASSERT_LT(std::sin(x[0]), 0.5) << x[0];
-    }
+    ASSERT_TRUE(certifiedRight(c, 0.5 - std::sin(x[0]))) << x[0];
     known += c != JointSpaceTable::kUnknown;
     const double turned[1] = {x[0] + 2 * M_PI};
     const JointSpaceTable::Cell same = t.lookup(turned);
@@ -196,23 +198,13 @@ TEST(JointSpaceTable, AStretchedSideSpendsTheBudgetWhereItMatters) {
     const double f = std::hypot(p[0], p[1] / 8) - 0.5;
     for (const JointSpaceTable* t : {&cubic, &stretched}) {
       const JointSpaceTable::Cell c = t->lookup(p);
-      if (c == JointSpaceTable::kFree) {
-        ASSERT_GT(f, 0);
-      }
-      if (c == JointSpaceTable::kColliding) {
-        ASSERT_LT(f, 0);
-      }
+      ASSERT_TRUE(certifiedRight(c, f));
     }
     // Beyond the range, in the stretched side: unknown or a certificate that holds there too.
     const double beyond[2] = {p[0], 1.0 + std::abs(p[1]) * 7};
     const double fb = std::hypot(beyond[0], beyond[1] / 8) - 0.5;
     const JointSpaceTable::Cell cb = stretched.lookup(beyond);
-    if (cb == JointSpaceTable::kFree) {
-      ASSERT_GT(fb, 0);
-    }
-    if (cb == JointSpaceTable::kColliding) {
-      ASSERT_LT(fb, 0);
-    }
+    ASSERT_TRUE(certifiedRight(cb, fb));
   }
   for (const JointSpaceTable* t : {&cubic, &stretched}) {
     const auto& f = t->volumeFractions();
@@ -257,12 +249,7 @@ TEST(JointSpaceTable, CellsSplitLaterWaitForTheBudgetTheOthersLeave) {
     int k = 0;
     for (const JointSpaceTable* t : {&even, &outside_first}) {
       const JointSpaceTable::Cell c = t->lookup(p);
-      if (c == JointSpaceTable::kFree) {
-        ASSERT_GT(f, 0);
-      }
-      if (c == JointSpaceTable::kColliding) {
-        ASSERT_LT(f, 0);
-      }
+      ASSERT_TRUE(certifiedRight(c, f));
       unknown_outside[k++] += f > 0 && c == JointSpaceTable::kUnknown;
     }
   }
