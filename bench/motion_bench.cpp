@@ -263,22 +263,23 @@ void BM_MoveTreeThenIntersects(benchmark::State& state) {
   state.SetLabel(label(res, colliding, mode));
 }
 
-// The same poses with the environment's BlackCellGrid (conservative rounding, where the grid
-// probes apply): speedup_vs_plain is BM_Fused's median over this one, same run.
+// The same poses with the environment's BlackCellGrid (either rounding): speedup_vs_plain is
+// BM_Fused's median over this one, same run.
 void BM_FusedWithCellGrid(benchmark::State& state) {
   const int res = static_cast<int>(state.range(0));
   const bool colliding = state.range(1) != 0;
-  Setup& s = setup(res, Rounding::kConservative);
+  const Rounding mode = state.range(2) ? Rounding::kConservative : Rounding::kCenter;
+  Setup& s = setup(res, mode);
   std::size_t wrong = 0;
-  const Summary sum = summarize(
-      timeCollides(state, s, colliding, Rounding::kConservative, s.cells.get(), nullptr, wrong));
+  const Summary sum =
+      summarize(timeCollides(state, s, colliding, mode, s.cells.get(), nullptr, wrong));
   state.counters["median_us"] = sum.median;
   state.counters["mean_us"] = sum.mean;
   state.counters["grid_level"] = s.cells->level();
   state.counters["wrong"] = static_cast<double>(wrong);
-  const auto it = fused_median.find({res, colliding, static_cast<int>(Rounding::kConservative)});
+  const auto it = fused_median.find({res, colliding, static_cast<int>(mode)});
   if (it != fused_median.end()) state.counters["speedup_vs_plain"] = it->second / sum.median;
-  state.SetLabel(label(res, colliding, Rounding::kConservative));
+  state.SetLabel(label(res, colliding, mode));
 }
 
 // The same poses with the environment's ClearanceGrid (either rounding): speedup_vs_plain is
@@ -306,13 +307,7 @@ void fusedArgs(benchmark::internal::Benchmark* b) {
       for (int cls = 0; cls < 2; ++cls) b->Args({res, cls, mode});
 }
 BENCHMARK(BM_Fused)->Apply(fusedArgs)->Iterations(10)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_FusedWithCellGrid)
-    ->Apply([](benchmark::internal::Benchmark* b) {
-      for (int res = 0; res < 3; ++res)
-        for (int cls = 0; cls < 2; ++cls) b->Args({res, cls});
-    })
-    ->Iterations(10)
-    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_FusedWithCellGrid)->Apply(fusedArgs)->Iterations(10)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_FusedWithClearanceGrid)
     ->Apply(fusedArgs)
     ->Iterations(10)

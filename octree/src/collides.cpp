@@ -115,22 +115,22 @@ class Query {
       cells[a][1] = hi[a] >> la;
       count[a] = cells[a][1] != cells[a][0] ? 2 : 1;
     }
-    // Cheapest guess: points of the source in entirely black environment cells. The voxel
-    // holding a moved leaf's centre is black in the moved tree (see inside()), so one landing
-    // in a black cell is a shared voxel. Needs the smallest leaf's moved half to pass inside().
-    if (solid_ && rounding_ == Rounding::kConservative &&
-        motion_detail::movedHalf(f_, 0) >= kInsideMinHalf) {
+    // Cheapest guess: points of the source in entirely black environment cells. Conservative:
+    // the voxel holding a moved leaf's centre is black in the moved tree (see inside()), so one
+    // landing in a black cell is a shared voxel (needs the smallest leaf's moved half to pass
+    // inside()). Centre: that voxel is black only if its centre lies in a moved black leaf,
+    // which centreProbe looks up in the source tree and confirms with the colour rule.
+    if (solid_ &&
+        (rounding_ == Rounding::kCenter || motion_detail::movedHalf(f_, 0) >= kInsideMinHalf)) {
       for (const std::array<double, 3>& u : src_.gridProbes()) {
         double g[3];
         motion_detail::movePoint(f_, u.data(), g);
-        if (solid_->black(g)) {
-          if (witness_) {
-            *witness_ = Cube{0,
-                             {static_cast<std::uint32_t>(g[0]), static_cast<std::uint32_t>(g[1]),
-                              static_cast<std::uint32_t>(g[2])}};
-          }
-          return true;
-        }
+        if (!solid_->black(g)) continue;
+        const Voxel v{static_cast<std::uint32_t>(g[0]), static_cast<std::uint32_t>(g[1]),
+                      static_cast<std::uint32_t>(g[2])};
+        if (rounding_ == Rounding::kCenter && !centreProbe(v)) continue;
+        if (witness_) *witness_ = Cube{0, v};
+        return true;
       }
     }
     // Drop the parts of the moved source that are clear of the environment; none left: free.
@@ -505,7 +505,42 @@ class Query {
   }
   static constexpr double kInsideMinHalf = 1e-3;  // >> kMotionTieTolerance and rounding noise
 
-  // Tries the voxel of `cell` nearest to the moved leaf's centre.
+  // Centre rounding: is target voxel v black in the moved tree? Its centre, taken back into
+  // the source grid, falls in at most one source leaf (up to ties); v is black if that leaf is
+  // black and accepts v by the colour rule (the same predicate moveTree applies, so a true
+  // answer is exact; a tie the lookup resolves the other way only costs a missed shortcut).
+  bool centreProbe(const Voxel& v) const {
+    const double d[3] = {static_cast<double>(v.x) + 0.5 - f_.b[0],
+                         static_cast<double>(v.y) + 0.5 - f_.b[1],
+                         static_cast<double>(v.z) + 0.5 - f_.b[2]};
+    std::uint32_t u[3];
+    const Node& root = nodes_[0];
+    const double side = 2.0 * motion_detail::halfSide(root.level);
+    for (int j = 0; j < 3; ++j) {
+      const double q = (f_.R[0][j] * d[0] + f_.R[1][j] * d[1] + f_.R[2][j] * d[2]) / f_.s;
+      if (!(q >= 0.0 && q < side)) return false;
+      u[j] = static_cast<std::uint32_t>(q);
+    }
+    for (std::uint32_t idx = 0;;) {
+      const Node& n = nodes_[idx];
+      const int sh = n.level - 1;
+      const int k = static_cast<int>((((u[0] - n.origin.x) >> sh) & 1u) |
+                                     ((((u[1] - n.origin.y) >> sh) & 1u) << 1) |
+                                     ((((u[2] - n.origin.z) >> sh) & 1u) << 2));
+      if ((n.black >> k) & 1u) {
+        const Cube leaf = Cube{n.level, n.origin}.child(k);
+        double c[3], g[3];
+        motion_detail::cubeCentre(leaf, c);
+        motion_detail::movePoint(f_, c, g);  // the same expression moveTree evaluates
+        return motion_detail::voxelAccepts(f_, rounding_, v, g,
+                                           motion_detail::movedHalf(f_, leaf.level));
+      }
+      if (!((n.gray >> k) & 1u)) return false;
+      idx = n.childIndex(k);
+    }
+  }
+
+  // Tries the voxel of `cell` (entirely black) nearest to the moved leaf's centre.
   bool probe(const CollisionItem& leaf, const Cube& cell) {
     return probe(leaf.g, leaf.rs[0], cell);
   }
@@ -520,7 +555,13 @@ class Query {
     const Voxel voxel{v[0], v[1], v[2]};
     if (!inside(voxel, g, hs)) {
       if (f_.n_cross < 0 && rounding_ == Rounding::kConservative) motion_detail::addEdgeAxes(f_);
-      if (!motion_detail::voxelAccepts(f_, rounding_, voxel, g, hs)) return false;
+      // Centre rounding: a leaf smaller than a voxel (finer link trees) seldom holds a voxel
+      // centre itself, but inside the object its neighbours do; one lookup settles the voxel
+      // instead of descending every leaf down to single voxels.
+      if (!motion_detail::voxelAccepts(f_, rounding_, voxel, g, hs) &&
+          !(rounding_ == Rounding::kCenter && centreProbe(voxel))) {
+        return false;
+      }
     }
     if (witness_) *witness_ = Cube{0, voxel};
     return true;

@@ -362,11 +362,9 @@ OctreeCollisionModel::OctreeCollisionModel(RobotModel robot, const EnvironmentGe
   // 5. The environment tree.
   environment_ =
       environment.voxelize(grid, options.rounding, &report_.environment, options.warnings);
-  if (options.rounding == Rounding::kConservative) {
-    environment_cells_ = std::make_unique<const BlackCellGrid>(environment_);
-    report_.environment_cell_grid_level = environment_cells_->level();
-    report_.environment_cell_grid_bytes = environment_cells_->bytes();
-  }
+  environment_cells_ = std::make_unique<const BlackCellGrid>(environment_);
+  report_.environment_cell_grid_level = environment_cells_->level();
+  report_.environment_cell_grid_bytes = environment_cells_->bytes();
   environment_clearance_ = std::make_unique<const ClearanceGrid>(environment_);
   report_.environment_clearance_grid_level = environment_clearance_->level();
   report_.environment_clearance_grid_bytes = environment_clearance_->bytes();

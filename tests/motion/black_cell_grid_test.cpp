@@ -73,6 +73,11 @@ TEST(BlackCellGrid, CollidesAnswersTheSameWithIt) {
   links.push_back(voxelize(link_grid, Cylinder{0.04, 0.3}, Eigen::Isometry3d::Identity(),
                            Rounding::kConservative));
   links.push_back(Octree::full(WorldGrid(Eigen::Vector3d::Zero(), 0.03, 2)));
+  // Leaves a quarter of the environment's voxel (the finer link trees): under centre rounding
+  // most leaves hold no voxel centre, so probes in black cells go through the source lookup.
+  links.push_back(voxelize(WorldGrid(Eigen::Vector3d::Constant(-0.16), 0.005, 6),
+                           Cylinder{0.04, 0.3}, Eigen::Isometry3d::Identity(),
+                           Rounding::kConservative));
   std::uniform_real_distribution<double> pos(-0.6, 0.6);
   CollisionScratch scratch;
   int hits = 0, compared = 0;
@@ -109,6 +114,78 @@ TEST(BlackCellGrid, CollidesAnswersTheSameWithIt) {
   EXPECT_THROW(collides(MovableSource(links[0]), Eigen::Isometry3d::Identity(), env,
                         Rounding::kConservative, scratch, nullptr, &wrong),
                InvalidArgument);
+}
+
+// The grid probes alone, against moveTree's colours: with a grid that calls every cell black
+// and an environment the link never reaches, collides() answers true exactly when a probe
+// lands in a voxel black in the moved tree. Conservative: always (the voxel holding a moved
+// leaf's centre is black). Centre: only when that voxel's centre lies in a moved black leaf,
+// which the query looks up in the source tree — never for a voxel moveTree leaves white.
+TEST(BlackCellGrid, GridProbesAnswerOnlyForVoxelsBlackInTheMovedTree) {
+  std::mt19937_64 rng(0x9b0);
+  const WorldGrid grid(Eigen::Vector3d(-0.64, -0.64, -0.64), 0.02, 6);
+  const BlackCellGrid all_black(Octree::full(grid));
+  const Octree far = Octree::fromVoxels(grid, {Voxel{0, 0, 0}});  // out of the links' reach
+  std::vector<Octree> links;
+  links.push_back(
+      test::randomShape(5, rng, 2, 6).toTree(WorldGrid(Eigen::Vector3d::Constant(-0.16), 0.01, 5)));
+  // Sources of one to three leaves (one to three probes), so that under centre rounding a pose
+  // often has no probe in a black voxel: a voxel as large as the target's, a 2 x 2 x 2 block
+  // that is one leaf, three scattered voxels a quarter of the target's.
+  links.push_back(
+      Octree::fromVoxels(WorldGrid(Eigen::Vector3d::Zero(), 0.02, 2), {Voxel{1, 2, 1}}));
+  links.push_back(
+      Octree::fromVoxels(WorldGrid(Eigen::Vector3d::Zero(), 0.01, 3),
+                         {Voxel{2, 2, 2}, Voxel{3, 2, 2}, Voxel{2, 3, 2}, Voxel{3, 3, 2},
+                          Voxel{2, 2, 3}, Voxel{3, 2, 3}, Voxel{2, 3, 3}, Voxel{3, 3, 3}}));
+  links.push_back(Octree::fromVoxels(WorldGrid(Eigen::Vector3d::Zero(), 0.005, 4),
+                                     {Voxel{1, 1, 1}, Voxel{9, 4, 13}, Voxel{14, 10, 2}}));
+  for (const double voxel : {0.02, 0.005}) {  // leaves as large as the target's, and a quarter
+    const int depth = voxel > 0.01 ? 4 : 6;
+    links.push_back(voxelize(WorldGrid(Eigen::Vector3d::Constant(-0.16), voxel, depth),
+                             Cylinder{0.05, 0.28}, Eigen::Isometry3d::Identity(),
+                             Rounding::kConservative));
+  }
+  std::uniform_real_distribution<double> pos(-0.3, 0.3);
+  CollisionScratch scratch;
+  int probe_hits[2] = {0, 0}, compared[2] = {0, 0};
+  for (const Octree& link : links) {
+    const MovableSource source(link);
+    for (int p = 0; p < 300; ++p) {
+      const Eigen::Isometry3d X = test::randomPoseAbout(
+          rng, test::gridCentre(link.grid()), Eigen::Vector3d(pos(rng), pos(rng), pos(rng)));
+      for (const Rounding mode : {Rounding::kConservative, Rounding::kCenter}) {
+        const Octree moved = moveTree(link, X, grid, mode);
+        ASSERT_FALSE(intersects(moved, far));
+        bool expect = false, ambiguous = false;
+        for (const auto& u : source.gridProbes()) {
+          const Eigen::Vector3d g =
+              grid.toGrid(X * link.grid().toWorld(Eigen::Vector3d(u[0], u[1], u[2])));
+          for (int a = 0; a < 3; ++a) {
+            ambiguous |= std::abs(g[a] - std::round(g[a])) < 1e-6;  // floor() could go either way
+          }
+          const Voxel v{static_cast<std::uint32_t>(g.x()), static_cast<std::uint32_t>(g.y()),
+                        static_cast<std::uint32_t>(g.z())};
+          expect |= moved.occupied(v);
+        }
+        if (ambiguous) continue;
+        Cube w{-1, {}};
+        const bool got = collides(source, X, far, mode, scratch, &w, &all_black);
+        ASSERT_EQ(got, expect) << "pose " << p << " " << toString(mode);
+        if (got) {
+          EXPECT_TRUE(moved.occupied(w.origin));
+        }
+        const int m = mode == Rounding::kCenter;
+        probe_hits[m] += got;
+        ++compared[m];
+      }
+    }
+  }
+  std::printf("probe hits: conservative %d / %d, centre %d / %d\n", probe_hits[0], compared[0],
+              probe_hits[1], compared[1]);
+  EXPECT_EQ(probe_hits[0], compared[0]);      // conservative: every probe's voxel is black
+  EXPECT_GT(probe_hits[1], compared[1] / 2);  // centre: exercised (both answers)
+  EXPECT_LT(probe_hits[1], compared[1]);
 }
 
 }  // namespace

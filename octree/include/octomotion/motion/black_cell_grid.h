@@ -1,8 +1,9 @@
 // A dense bit grid of an environment tree's black cells at one level: "is the cell holding this
 // point black?" in a handful of instructions, where a walk down the tree costs one step per
 // level. collides() uses it to try a few points of the moved source before any traversal: a
-// point of a black source leaf inside a black environment cell is a shared voxel (the voxel
-// holding the moved leaf's centre is black in the moved tree under conservative rounding).
+// point of a black source leaf inside a black environment cell is a shared voxel when the voxel
+// holding it is black in the moved tree (always under conservative rounding; under centre
+// rounding when that voxel's centre lies in a moved black leaf, which the query checks).
 #pragma once
 
 #include <cstddef>

@@ -125,8 +125,10 @@ class CollisionScratch {
 // True iff intersects(moveTree(source, X_WS, environment.grid(), rounding), environment).
 // On true, *witness (if given) receives a voxel black in both. Const and thread-safe given one
 // scratch per thread. Throws InvalidArgument for an invalid pose.
-// `solid` (optional, conservative rounding only): the environment's BlackCellGrid; the source's
-// grid probes that land in a black cell answer at once (same answer, found sooner).
+// `solid` (optional): the environment's BlackCellGrid; the source's grid probes that land in a
+// black cell answer at once (same answer, found sooner). Under centre rounding a probe answers
+// only if the voxel it lands in is black in the moved tree (its centre in a moved black leaf,
+// looked up in the source tree and confirmed by the colour rule).
 // `clearance` (optional, either rounding): the environment's ClearanceGrid; before the descent
 // the moved source is split (at most kClearanceSplits nodes, breadth first) into pieces, and a
 // piece whose bounding sphere lies within the clearance at its centre is dropped (same answer;
