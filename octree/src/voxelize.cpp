@@ -252,7 +252,7 @@ class PrimitiveDescent {
   // The rounding rule for one voxel, exact.
   bool voxel(const Cube& v) const {
     const Eigen::Vector3d o(v.origin.x, v.origin.y, v.origin.z);
-    if (conservative_) return shape_.touches(o, o.array() + 1.0);
+    if (conservative_) return shape_.touches(o.array() + kFaceTie, o.array() + (1.0 - kFaceTie));
     return shape_.containsPoint(o.array() + 0.5);
   }
 

@@ -21,6 +21,15 @@ enum class Overlap { kOutside, kInside, kPartial };
 // a double's spacing is < 5e-10, so 1e-7 covers several roundings of every transform.
 inline constexpr double kInternalMargin = 1e-7;
 
+// Conservative rounding: a voxel is black when the object meets its interior, i.e. the voxel
+// shrunk by kFaceTie per side (grid units; the motion kernel's tie tolerance,
+// kMotionTieTolerance). A face that lies on a voxel boundary, as the faces of a box authored at
+// round coordinates do in a grid whose origin is at another of its faces, then adds no layer
+// beyond it (the closed voxel added a whole voxel there, the largest margin any face gets); an
+// object that reaches into a voxel by more than 1e-6 voxel still blackens it, so contacts are
+// kept up to that tie, as the moved trees keep them.
+inline constexpr double kFaceTie = 1e-6;
+
 // The box a cube is tested with. Conservative: the closed cube itself. Centre: the box spanned by
 // the centres of its voxels (the cube shrunk by half a voxel per side), so "box touches object"
 // = "some voxel centre is in the object" for convex objects and "box inside object" = "every

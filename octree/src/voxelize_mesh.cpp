@@ -303,11 +303,14 @@ class MeshDescent {
              const Eigen::Vector3d& middle, Status& middle_status) const {
     const Eigen::Vector3d centre(v.origin.x + 0.5, v.origin.y + 0.5, v.origin.z + 0.5);
     if (conservative_) {
-      // An untouched voxel takes the status of the middle, one of its corners, unless a
-      // triangle passes within rounding of it (then ask from the voxel's centre).
+      // A triangle reaching into the voxel (kFaceTie) makes it black. An untouched voxel takes
+      // the status of the middle, one of its corners, unless a triangle passes within rounding
+      // of it or only touches its boundary (then ask from the voxel's centre: a voxel inside a
+      // face that lies on its boundary is inside the solid, one outside it is not).
       bool grazed = false;
       for (std::uint32_t i : candidates) {
-        const int level = touchLevel(triangles_[i], centre, 0.5, kInternalMargin);
+        const int level =
+            touchLevel(triangles_[i], centre, 0.5 - kFaceTie, kFaceTie + kInternalMargin);
         if (level == 2) return true;
         grazed |= level == 1;
       }

@@ -319,9 +319,13 @@ OctreeCollisionModel::OctreeCollisionModel(RobotModel robot, const EnvironmentGe
   if (const auto env_box = environment.bounds()) {
     const Eigen::AlignedBox3d overlap = env_box->intersection(report_.reach_W);
     if (!overlap.isEmpty()) {
+      // No margin around it: the universe's minimum corner is then the lowest face of the
+      // environment the robot can reach, so faces at round distances from it (shelves, walls,
+      // a table top) fall on voxel boundaries, where conservative voxels of primitives add no
+      // layer (voxelize: a voxel is black when the solid meets its interior), and on the
+      // boundaries of larger cells. A contact lies in both the reach and the environment, so
+      // in the universe; a voxel that sticks out of it could only add a false positive.
       region = overlap;
-      region.extend(overlap.min() - Eigen::Vector3d::Constant(options.resolution));
-      region.extend(overlap.max() + Eigen::Vector3d::Constant(options.resolution));
     }
   }
   const WorldGrid grid = fitGrid(region, options.resolution);

@@ -118,8 +118,10 @@ void checkAgainstBruteForce(const WorldGrid& grid, const Primitive& shape,
         } else if (f > kVoxel) {
           truth = Truth::kNo;
         } else {
+          // The object must reach into the voxel: its interior, shrunk by the 1e-6-voxel tie.
           Cube c{0, v};
-          truth = touchesBox(shape, X_SW, grid.cubeMin(c), grid.cubeMax(c));
+          const Eigen::Vector3d tie = Eigen::Vector3d::Constant(1e-6 * kVoxel);
+          truth = touchesBox(shape, X_SW, grid.cubeMin(c) + tie, grid.cubeMax(c) - tie);
         }
         if (truth == Truth::kUnknown) {
           ++*undecided;
@@ -249,8 +251,9 @@ TEST(Voxelize, CenterModeKeepsVolumeAndConservativeContainsIt) {
 }
 
 TEST(Voxelize, AxisAlignedBoxOnVoxelBoundaries) {
-  // A box whose faces lie exactly on voxel faces: centre mode gives exactly the box's voxels;
-  // conservative adds the one-voxel layer that touches the closed faces.
+  // A box whose faces lie exactly on voxel faces: both modes give exactly the box's voxels
+  // (conservative rounding asks for the voxel's interior, so the layer of voxels that only
+  // touch the faces stays white). Moved by a thousandth of a voxel, it reaches into one layer.
   const WorldGrid grid(Eigen::Vector3d::Zero(), 0.25, 5);
   Eigen::Isometry3d X_WS = Eigen::Isometry3d::Identity();
   X_WS.translation() =
@@ -264,9 +267,17 @@ TEST(Voxelize, AxisAlignedBoxOnVoxelBoundaries) {
   EXPECT_TRUE(center.occupied({6, 8, 10}));
   EXPECT_TRUE(center.occupied({9, 11, 13}));
   EXPECT_FALSE(center.occupied({10, 11, 13}));
-  EXPECT_EQ(conservative.blackVoxelCount(), 6u * 6u * 6u);
-  EXPECT_TRUE(conservative.occupied({5, 7, 9}));
-  EXPECT_FALSE(conservative.occupied({4, 7, 9}));
+  EXPECT_EQ(conservative, center);
+  EXPECT_FALSE(conservative.occupied({5, 8, 10}));
+  EXPECT_FALSE(conservative.occupied({10, 8, 10}));
+  X_WS.translation().x() += 1e-3 * grid.voxelSize();
+  const Octree moved = voxelize(grid, box, X_WS, Rounding::kConservative);
+  EXPECT_EQ(moved.blackVoxelCount(), 5u * 4u * 4u);
+  EXPECT_TRUE(moved.occupied({10, 8, 10}));
+  EXPECT_FALSE(moved.occupied({5, 8, 10}));
+  // By less than the tie (1e-6 voxel) it does not.
+  X_WS.translation().x() += -1e-3 * grid.voxelSize() + 1e-7 * grid.voxelSize();
+  EXPECT_EQ(voxelize(grid, box, X_WS, Rounding::kConservative), center);
 }
 
 TEST(Voxelize, UniverseWideAndDisjointShapes) {

@@ -56,8 +56,22 @@ TEST(Cli, InfoDescribesWhatIsModelled) {
   EXPECT_THAT(r.out, HasSubstr("hand: "));
   EXPECT_THAT(r.out, HasSubstr("self-collision pairs checked: "));
   EXPECT_THAT(r.out, Not(HasSubstr("self-collision trees")));
-  EXPECT_THAT(r.out, HasSubstr("environment tested in the order (share of sampled states "
-                               "hitting): hand"));
+  // The links are tested most-often-hit first: the shares printed are non-increasing.
+  const std::string order = "environment tested in the order (share of sampled states hitting): ";
+  const std::size_t at = r.out.find(order);
+  ASSERT_NE(at, std::string::npos) << r.out;
+  std::istringstream shares(
+      r.out.substr(at + order.size(), r.out.find('\n', at) - at - order.size()));
+  std::string link, share, percent;
+  double previous = 100.0;
+  int links = 0;
+  while (shares >> link >> share >> percent) {
+    const double value = std::stod(share.substr(1));  // "(7.4" -> 7.4
+    EXPECT_LE(value, previous) << link;
+    previous = value;
+    ++links;
+  }
+  EXPECT_EQ(links, 9);  // octo7 has 11 links; the base and link1 are never tested here
   // The black-cell grid of the fused query's first probes and the clearance grid serve both
   // roundings.
   EXPECT_THAT(r.out, HasSubstr("environment black-cell grid: level "));

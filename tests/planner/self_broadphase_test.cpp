@@ -176,8 +176,8 @@ TEST(EnvironmentPreTest, ObjectBoxesMatchEnvironmentBox) {
       ASSERT_EQ(automatic.environmentInCollision(path, a), expected) << "state " << i;
       hits += expected;
     }
-    EXPECT_GT(hits, 200);
-    EXPECT_LT(hits, 1800);
+    EXPECT_GT(hits, 100);  // both answers are exercised
+    EXPECT_LT(hits, 1900);
   }
 }
 

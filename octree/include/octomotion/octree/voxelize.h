@@ -3,7 +3,10 @@
 // Each builder works top-down from the universe (Weng & Ahuja 1987 §4): every cube is classified
 // against the object as inside / outside / partial, partial cubes are split, and level-0 voxels
 // are decided by the rounding mode's per-voxel predicate:
-//   - Rounding::kConservative: black iff the object touches the closed voxel;
+//   - Rounding::kConservative: primitives: black iff the object meets the voxel's interior (the
+//     voxel shrunk by 1e-6 voxel per side, the motion kernel's tie tolerance), so a face lying on
+//     a voxel boundary adds no voxels beyond it; meshes: black iff the object touches the closed
+//     voxel;
 //   - Rounding::kCenter: black iff the voxel centre is on or inside the object (§3).
 // The result equals that predicate applied to every voxel of the universe; the parts of the
 // object outside the universe are dropped. The per-voxel tests are exact (up to floating-point
