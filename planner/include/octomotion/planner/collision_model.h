@@ -67,6 +67,11 @@ enum class EnvironmentPreTest { kAuto, kEnvironmentBox, kObjectBoxes };
 // check), tie at 250 and lose at 500 (4.6 vs 3.2 us).
 inline constexpr std::size_t kObjectBoxesMaxObjects = 128;
 
+// The environment tree is built on universes whose origin is the lowest corner of the
+// environment the robot can reach, or 1 .. kOriginShifts - 1 voxels below it, and the one with
+// the fewest nodes is kept (collision_model.cpp, step 5).
+inline constexpr int kOriginShifts = 4;
+
 // How clearanceLowerBound finds each clearance sphere's nearest obstacle:
 // kEnvironmentTree: branch and bound over the environment octree's black leaves (exact box
 //   distance to the nearest black voxel);
