@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include "octomotion/motion/pose.h"
 #include "octomotion/octree/octree_builder.h"
 #include "octomotion/octree/rounding.h"
 
@@ -28,7 +29,7 @@ inline constexpr double kInternalMargin = 1e-7;
 // beyond it (the closed voxel added a whole voxel there, the largest margin any face gets); an
 // object that reaches into a voxel by more than 1e-6 voxel still blackens it, so contacts are
 // kept up to that tie, as the moved trees keep them.
-inline constexpr double kFaceTie = 1e-6;
+inline constexpr double kFaceTie = kMotionTieTolerance;
 
 // The box a cube is tested with. Conservative: the closed cube itself. Centre: the box spanned by
 // the centres of its voxels (the cube shrunk by half a voxel per side), so "box touches object"

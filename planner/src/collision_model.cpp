@@ -320,16 +320,16 @@ OctreeCollisionModel::OctreeCollisionModel(RobotModel robot, const EnvironmentGe
     const Eigen::AlignedBox3d overlap = env_box->intersection(report_.reach_W);
     if (!overlap.isEmpty()) {
       // No margin around it: the universe's minimum corner is then the lowest face of the
-      // environment the robot can reach, so faces at round distances from it (shelves, walls,
-      // a table top) fall on voxel boundaries, where conservative voxels of primitives add no
-      // layer (voxelize: a voxel is black when the solid meets its interior), and on the
-      // boundaries of larger cells. A contact lies in both the reach and the environment, so
-      // in the universe; a voxel that sticks out of it could only add a false positive.
+      // environment the robot can reach (or 1-3 voxels below it, step 5), so faces at round
+      // distances from it (shelves, walls, a table top) fall on voxel boundaries, where
+      // conservative voxels of primitives add no layer (voxelize: a voxel is black when the solid
+      // meets its interior), and on the boundaries of larger cells. A contact lies in both the
+      // reach and the environment, so in the universe; a voxel that sticks out of it could only add
+      // a false positive.
       region = overlap;
     }
   }
   WorldGrid grid = fitGrid(region, options.resolution);  // its origin may move down in step 5
-  report_.grid = grid;
   guardTreeSizes(robot_, boxes_L, std::min(link_res, self_res), environment, region, options);
 
   // 4. Each link's source tree, in its own frame, at the link resolution (and a second one at
