@@ -35,9 +35,9 @@ const char* kUsage = R"(usage: tradeoff_bench [options]
   --runs N                planning runs per planner and setting (default 20)
   --planners NAME[:S],..  default RRTConnect:5,RRTstar:1
   --no-fcl-octomap        leave out FCL+OctoMap
-  --link-ratio R          octree link trees at R x each resolution (default 1; e.g. 0.25)
-  --self-link-ratio R     self-collision link trees at R x each resolution (default: the link
-                          trees themselves)
+  --link-ratio R          octree link trees at R x each resolution (default 0.25, the library's)
+  --self-link-ratio R     self-collision link trees at R x each resolution (default: --link-ratio
+                          if given, else 1, the library's defaults)
   --self-pair-tables on|off  joint-space tables for self pairs (default: the scene's setting)
 )";
 

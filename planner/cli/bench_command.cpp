@@ -33,8 +33,9 @@ bench options:
   --plan-every-setting     plan with every setting (default: the fused conservative octree at
                            every resolution, the others at the scene's resolution, FCL)
   --no-fcl-octomap         leave out FCL+OctoMap
-  --link-ratio R           octree link trees at R x each resolution (default 1; e.g. 0.25)
-  --self-link-ratio R      self-collision trees at R x each resolution (default: --link-ratio)
+  --link-ratio R           octree link trees at R x each resolution (default 0.25, the library's)
+  --self-link-ratio R      self-collision trees at R x each resolution (default: --link-ratio if
+                           given, else 1, the library's defaults)
   --out-dir DIR            where the CSV, markdown, plot data and logs go (default .)
   --seed N                 seeds the states and OMPL (default 1)
   --time S                 default planning time limit (default: the scene's)
@@ -147,10 +148,11 @@ int benchCommand(const std::vector<std::string>& args) {
   if (positional.size() != 1) throw InvalidArgument("bench: expected one scene (see --help)");
   if (options.overrides.resolution || options.overrides.auto_resolution ||
       options.overrides.checker || options.overrides.rounding || options.overrides.planner ||
-      options.overrides.self_link_resolution) {
+      options.overrides.link_resolution || options.overrides.self_link_resolution) {
     throw InvalidArgument(
-        "bench: --resolution/--rounding/--checker/--planner/--self-link-resolution do not apply; "
-        "use --resolutions, --roundings, --paths, --planners, --self-link-ratio");
+        "bench: --resolution/--rounding/--checker/--planner/--link-resolution/"
+        "--self-link-resolution do not apply; use --resolutions, --roundings, --paths, "
+        "--planners, --link-ratio, --self-link-ratio");
   }
   options.scene_path = positional.front();
   if (options.overrides.seed) options.seed = *options.overrides.seed;

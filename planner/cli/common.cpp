@@ -46,6 +46,10 @@ bool parseSceneOption(const std::string& arg, const std::function<std::string()>
     const double n = parseNumber(arg, value());
     if (!(n > 0)) throw InvalidArgument("--max-surface-voxels: must be > 0");
     overrides.max_surface_voxels = n;
+  } else if (arg == "--link-resolution") {
+    const double r = parseNumber(arg, value());
+    if (!(r > 0)) throw InvalidArgument("--link-resolution: must be > 0");
+    overrides.link_resolution = r;
   } else if (arg == "--self-link-resolution") {
     const double r = parseNumber(arg, value());
     if (!(r > 0)) throw InvalidArgument("--self-link-resolution: must be > 0");

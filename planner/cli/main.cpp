@@ -36,9 +36,12 @@ options:
   --checker octree|octree-fused|fcl|fcl-octomap
   --package-path DIR         extra package:// search path (repeatable)
   --max-surface-voxels N     fail early when a tree would need more voxels (default 2e8)
+  --link-resolution METRES   voxel size of the links' trees for the environment queries
+                             (default: the resolution / 4; docs/planner.md)
   --self-link-resolution METRES
-                             finer link trees for self-collision pairs only (fewer false
-                             positives of near self pairs; docs/trade-off.md)
+                             link trees for self-collision pairs only (default: the
+                             --link-resolution if given, else the resolution; finer ones give
+                             fewer false positives of near self pairs; docs/trade-off.md)
   --self-pair-tables on|off  joint-space tables for self pairs of 1-2 variables (default off;
                              docs/planner.md, "Self-pair tables")
   --interpolation METRES     plan: spacing of the written path's states (default: OMPL's)

@@ -224,11 +224,16 @@ OctreeCollisionModel::OctreeCollisionModel(RobotModel robot, const EnvironmentGe
       options_(options),
       environment_(WorldGrid({0, 0, 0}, 1, 1)) {
   const auto start = Clock::now();
-  const double link_res = options.link_resolution.value_or(options.resolution);
+  if (!(std::isfinite(options.resolution) && options.resolution > 0)) {
+    throw InvalidArgument("resolution must be finite and > 0");
+  }
+  const double link_res =
+      options.link_resolution.value_or(options.resolution * kDefaultLinkResolutionRatio);
   if (!(std::isfinite(link_res) && link_res > 0)) {
     throw InvalidArgument("link resolution must be finite and > 0");
   }
-  const double self_res = options.self_link_resolution.value_or(link_res);
+  const double self_res = options.self_link_resolution.value_or(
+      options.link_resolution ? *options.link_resolution : options.resolution);
   if (!(std::isfinite(self_res) && self_res > 0)) {
     throw InvalidArgument("self-collision link resolution must be finite and > 0");
   }

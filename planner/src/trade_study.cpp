@@ -531,8 +531,10 @@ TradeStudyResult runTradeStudy(const TradeStudyOptions& options) {
   result.scene = spec.name;
   result.free_flying = free_flying;
   result.scene_resolution = scene.resolution;
-  result.link_resolution_ratio = options.link_resolution_ratio;
-  result.self_link_resolution_ratio = options.self_link_resolution_ratio;
+  result.link_resolution_ratio =
+      options.link_resolution_ratio.value_or(kDefaultLinkResolutionRatio);
+  result.self_link_resolution_ratio = options.self_link_resolution_ratio.value_or(
+      options.link_resolution_ratio ? *options.link_resolution_ratio : 1.0);
   result.self_pair_tables = spec.octree.self_pair_tables;
   std::vector<double> resolutions = options.resolutions.empty()
                                         ? defaultResolutions(free_flying, scene.resolution)
@@ -623,12 +625,8 @@ TradeStudyResult runTradeStudy(const TradeStudyOptions& options) {
     for (Rounding rounding : options.roundings) {
       CollisionModelOptions mo;
       mo.resolution = resolution;
-      if (options.link_resolution_ratio != 1.0) {
-        mo.link_resolution = resolution * options.link_resolution_ratio;
-      }
-      if (options.self_link_resolution_ratio) {
-        mo.self_link_resolution = resolution * *options.self_link_resolution_ratio;
-      }
+      mo.link_resolution = resolution * result.link_resolution_ratio;
+      mo.self_link_resolution = resolution * result.self_link_resolution_ratio;
       mo.rounding = rounding;
       mo.self_pair_tables = spec.octree.self_pair_tables;
       if (spec.octree.max_surface_voxels) mo.max_surface_voxels = *spec.octree.max_surface_voxels;
@@ -775,13 +773,10 @@ void writeMarkdown(const TradeStudyResult& result, std::ostream& out) {
   out << fcl.states << " uniform states (" << fcl.colliding_states << " colliding per FCL, "
       << fcl.free_states << " free); times in microseconds per check, forward kinematics "
       << "included; FP % of free states, FN % of colliding states.";
-  if (result.link_resolution_ratio != 1.0) {
-    out << " Octree link source trees at " << result.link_resolution_ratio
-        << " x the environment resolution.";
-  }
-  if (result.self_link_resolution_ratio &&
-      *result.self_link_resolution_ratio != result.link_resolution_ratio) {
-    out << " Self-collision trees at " << *result.self_link_resolution_ratio
+  out << " Octree link source trees at " << result.link_resolution_ratio
+      << " x the environment resolution.";
+  if (!result.free_flying && result.self_link_resolution_ratio != result.link_resolution_ratio) {
+    out << " Self-collision trees at " << result.self_link_resolution_ratio
         << " x the environment resolution.";
   }
   if (result.self_pair_tables) {

@@ -55,7 +55,9 @@ TEST(Cli, InfoDescribesWhatIsModelled) {
                                "finger_joint1"));
   EXPECT_THAT(r.out, HasSubstr("hand: "));
   EXPECT_THAT(r.out, HasSubstr("self-collision pairs checked: "));
-  EXPECT_THAT(r.out, Not(HasSubstr("self-collision trees")));
+  // The defaults: link trees at 1/4 of the voxel for the environment queries, the self pairs'
+  // trees at the voxel itself.
+  EXPECT_THAT(r.out, HasSubstr("links (source voxels 0.005 m; self-collision trees 0.02 m)"));
   // The links are tested most-often-hit first: the shares printed are non-increasing.
   const std::string order = "environment tested in the order (share of sampled states hitting): ";
   const std::size_t at = r.out.find(order);
@@ -81,16 +83,27 @@ TEST(Cli, InfoDescribesWhatIsModelled) {
   EXPECT_THAT(center.out, HasSubstr("environment black-cell grid: level "));
   EXPECT_THAT(r.out, HasSubstr("environment clearance grid: level "));
   EXPECT_THAT(center.out, HasSubstr("environment clearance grid: level "));
-  const CliRun fine =
-      run("info " + scene("bookshelf.yaml") + " --resolution 0.02 --self-link-resolution 0.005");
+  const CliRun fine = run("info " + scene("bookshelf.yaml") +
+                          " --resolution 0.02 --link-resolution 0.01 --self-link-resolution 0.005");
   ASSERT_EQ(fine.status, 0) << fine.err;
-  EXPECT_THAT(fine.out, HasSubstr("self-collision trees 0.005 m"));
+  EXPECT_THAT(fine.out, HasSubstr("links (source voxels 0.01 m; self-collision trees 0.005 m)"));
+  // A link resolution given alone serves the self pairs too: one tree per link.
+  const CliRun given = run("info " + scene("bookshelf.yaml") + " --link-resolution 0.01");
+  ASSERT_EQ(given.status, 0) << given.err;
+  EXPECT_THAT(given.out, HasSubstr("links (source voxels 0.01 m):"));
+  EXPECT_THAT(given.out, Not(HasSubstr("self-collision trees")));
+  // The moveTree path materialises every link leaf: its scenes keep link trees at the voxel.
+  const CliRun move_tree =
+      run("info " + scene("bookshelf.yaml") + " --resolution 0.02 --checker octree");
+  ASSERT_EQ(move_tree.status, 0) << move_tree.err;
+  EXPECT_THAT(move_tree.out, HasSubstr("links (source voxels 0.02 m):"));
 }
 
 // Options that name one setting are the study's own lists (--resolutions, --self-link-ratio ...):
 // a one-setting option would otherwise be silently ignored.
 TEST(Cli, BenchRejectsSingleSettingOptions) {
-  for (const char* option : {"--resolution 0.01", "--self-link-resolution 0.002"}) {
+  for (const char* option :
+       {"--resolution 0.01", "--link-resolution 0.002", "--self-link-resolution 0.002"}) {
     const CliRun r = run("bench " + scene("bookshelf.yaml") + " --states 10 --runs 0 " + option);
     EXPECT_NE(r.status, 0) << option;
     EXPECT_THAT(r.err, HasSubstr("do not apply")) << option;

@@ -158,6 +158,7 @@ TEST(EnvironmentPreTest, ObjectBoxesMatchEnvironmentBox) {
   const RobotModel robot = snake(7, 1.5);
   CollisionModelOptions o;
   o.resolution = 0.01;
+  o.link_resolution = 0.01;  // the moveTree path below materialises every link leaf
   const OctreeCollisionModel automatic(robot, env, o);
   EXPECT_EQ(automatic.report().environment_pre_test, EnvironmentPreTest::kObjectBoxes);
   EXPECT_EQ(automatic.report().environment_object_boxes, objects.size());

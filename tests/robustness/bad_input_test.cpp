@@ -163,6 +163,7 @@ TEST(BadInput, TreesTooLargeForTheMemoryLimitFailEarly) {
       loadScene(std::string(OCTOMOTION_SOURCE_DIR) + "/robots/scenes/bookshelf.yaml").environment);
   CollisionModelOptions options;
   options.resolution = 0.01;
+  options.link_resolution = 0.01;     // (the default, 1/4 of the voxel, needs 16x as many)
   options.max_surface_voxels = 1500;  // link0 (18 x 18 x 14 cm) has about 1,860 at 1 cm
   try {
     OctreeCollisionModel model(robot, env, options);

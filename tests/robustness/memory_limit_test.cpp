@@ -114,6 +114,7 @@ TEST(MemoryLimit, PointCloudsCountPointsNotTheirBox) {
   const OctreeCollisionModel model(ball(), env, options);
   EXPECT_LE(model.environment().blackLeafCount(), 1000u);
   options.max_surface_voxels = 500;
+  options.link_resolution = 0.01;  // the ball fits at 1 cm (at the default 1/4 cm it would not)
   const std::string what = expectRejected([&] { OctreeCollisionModel(ball(), env, options); });
   EXPECT_THAT(what, HasSubstr("scan"));
   EXPECT_THAT(what, HasSubstr("coarser resolution"));

@@ -115,7 +115,9 @@ inline void checkConservative(const std::string& scene_file, const std::string& 
 }
 
 // The kStates states of the checker path split into `shards` executables (CI time budget: the
-// moveTree path materialises a tree per link and pair), shard `shard` of them here.
+// moveTree path materialises a tree per link and pair), shard `shard` of them here. (A scene
+// planned through the moveTree path keeps its link trees at the environment's voxel,
+// loadPlanningScene; the fused path's test checks the default link trees, 1/4 of it.)
 inline void checkConservativeShard(const std::string& scene_file, const std::string& checker,
                                    std::size_t shard, std::size_t shards) {
   checkConservative(scene_file, checker, kStates * shard / shards, kStates * (shard + 1) / shards);

@@ -165,7 +165,7 @@ TradeStudyOptions bookshelfFusedConservative() {
 TEST(TradeStudyTest, FinerSelfTreesAreMeasuredAndCounted) {
   TradeStudyOptions options = bookshelfFusedConservative();
   const TradeStudyResult same = runTradeStudy(options);
-  options.self_link_resolution_ratio = 0.25;
+  options.self_link_resolution_ratio = 0.125;  // finer than the default link trees (1/4)
   const TradeStudyResult finer = runTradeStudy(options);
   ASSERT_EQ(same.checks.size(), 2u);
   ASSERT_EQ(finer.checks.size(), 2u);
@@ -176,7 +176,7 @@ TEST(TradeStudyTest, FinerSelfTreesAreMeasuredAndCounted) {
   EXPECT_GT(b.memory_bytes, a.memory_bytes);  // the second trees are counted
   std::ostringstream md;
   writeMarkdown(finer, md);
-  EXPECT_NE(md.str().find("Self-collision trees at 0.25"), std::string::npos);
+  EXPECT_NE(md.str().find("Self-collision trees at 0.125"), std::string::npos);
 }
 
 // Self-pair tables from the scene options (as `--self-pair-tables on` sets them): only

@@ -33,6 +33,7 @@ struct SceneOverrides {
   std::optional<std::uint64_t> seed;
   std::vector<std::string> package_paths;
   std::optional<double> max_surface_voxels;    // > 0; the memory guard, see CollisionModelOptions
+  std::optional<double> link_resolution;       // > 0; octree.link_resolution
   std::optional<double> self_link_resolution;  // > 0; octree.self_link_resolution
   std::optional<bool> self_pair_tables;        // octree.self_pair_tables
 };

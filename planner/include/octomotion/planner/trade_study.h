@@ -33,11 +33,11 @@ struct TradeStudyOptions {
   std::vector<Rounding> roundings = {Rounding::kConservative, Rounding::kCenter};
   std::vector<CheckerPath> paths = {CheckerPath::kMoveTree, CheckerPath::kFused};
   bool fcl_octomap = true;  // also FCL+OctoMap at every resolution (when it is built in)
-  // The links' source-tree voxel size as a multiple of each resolution (1: the same). Finer link
-  // trees shrink the conservative margin of self pairs, which dominates arms' false positives.
-  double link_resolution_ratio = 1.0;
-  // Self-collision trees at this multiple of each resolution; empty: the link trees themselves
-  // (link_resolution_ratio). See CollisionModelOptions::self_link_resolution.
+  // The links' source-tree voxel size as a multiple of each resolution; empty: the library's
+  // default (kDefaultLinkResolutionRatio). Finer link trees shrink the conservative margin.
+  std::optional<double> link_resolution_ratio;
+  // Self-collision trees at this multiple of each resolution; empty: link_resolution_ratio when
+  // that is set, else 1 (the library's defaults, CollisionModelOptions::self_link_resolution).
   std::optional<double> self_link_resolution_ratio;
   std::size_t states = 20000;
   // The moveTree path is orders of magnitude slower at fine resolutions; it checks only the
@@ -109,9 +109,10 @@ struct TradeStudyResult {
   std::string scene;
   bool free_flying = false;
   double scene_resolution = 0;
-  double link_resolution_ratio = 1.0;                // TradeStudyOptions::link_resolution_ratio
-  std::optional<double> self_link_resolution_ratio;  // TradeStudyOptions::...
-  bool self_pair_tables = false;                     // the scene's octree.self_pair_tables
+  // The link and self-collision trees' voxel sizes used, as multiples of each resolution.
+  double link_resolution_ratio = kDefaultLinkResolutionRatio;
+  double self_link_resolution_ratio = 1.0;
+  bool self_pair_tables = false;  // the scene's octree.self_pair_tables
   std::vector<CheckRow> checks;
   std::vector<PlanRow> planning;
 };
