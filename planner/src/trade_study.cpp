@@ -159,19 +159,20 @@ constexpr int kTimedRounds = 5;
 // The passes over the states: each check timed alone (wall clock, for the medians and the
 // 90th percentiles; includes ~20-40 ns of clock reads), then kTimedRounds rounds of whole
 // passes in thread CPU time (the means): each round times the reference's full check (when
-// given) right before this checker's, so their ratio is taken on the same machine state; then
-// the environment-only pass. mean_us is the median of the rounds' means, speedup the median of
-// the rounds' ratios (reference / this).
+// given) right before this checker's, so their ratio is taken on the same machine state, then
+// the environment-only pass likewise after `env_reference`'s (when given). mean_us and
+// env_mean_us are the medians of the rounds' means, speedup and env_speedup the medians of the
+// rounds' ratios (reference / this).
 struct Measurement {
   std::vector<double> full_us;
   std::vector<bool> answers, env_answers;
   double mean_us = 0, env_mean_us = 0;
-  double speedup = 1;
+  double speedup = 1, env_speedup = -1;
 };
 
 template <class Full, class Env>
 Measurement measure(std::size_t count, const Full& full, const Env& env,
-                    const CheckFn& reference = {}) {
+                    const CheckFn& reference = {}, const CheckFn& env_reference = {}) {
   Measurement m;
   m.full_us.resize(count);
   m.answers.resize(count);
@@ -192,21 +193,27 @@ Measurement measure(std::size_t count, const Full& full, const Env& env,
     const double us = (threadCpuMicros() - c0) / static_cast<double>(count);
     return std::make_pair(us, hits);
   };
-  std::vector<double> means, ratios;
+  for (std::size_t i = 0; i < count; ++i) m.env_answers[i] = env(i);
+  const auto env_expected =
+      static_cast<std::size_t>(std::count(m.env_answers.begin(), m.env_answers.end(), true));
+  std::vector<double> means, ratios, env_means, env_ratios;
   for (int round = 0; round < kTimedRounds; ++round) {
     const double reference_us = reference ? pass(reference).first : 0.0;
     const auto [us, hits] = pass(full);
-    if (hits != expected) {
+    const double env_reference_us = env_reference ? pass(env_reference).first : 0.0;
+    const auto [env_us, env_hits] = pass(env);
+    if (hits != expected || env_hits != env_expected) {
       throw Error("trade study: a checker answered differently on the same states");
     }
     means.push_back(us);
+    env_means.push_back(env_us);
     if (reference) ratios.push_back(reference_us / us);
+    if (env_reference) env_ratios.push_back(env_reference_us / env_us);
   }
   m.mean_us = percentile(means, 0.5);
+  m.env_mean_us = percentile(env_means, 0.5);
   if (reference) m.speedup = percentile(ratios, 0.5);
-  const double c0 = threadCpuMicros();
-  for (std::size_t i = 0; i < count; ++i) m.env_answers[i] = env(i);
-  m.env_mean_us = (threadCpuMicros() - c0) / static_cast<double>(count);
+  if (env_reference) m.env_speedup = percentile(env_ratios, 0.5);
   return m;
 }
 
@@ -229,7 +236,8 @@ Measurement measureFclLike(const Model& model, const States& states, std::size_t
 }
 
 Measurement measureOctree(const OctreeCollisionModel& model, CheckerPath path, const States& states,
-                          std::size_t count, const CheckFn& reference) {
+                          std::size_t count, const CheckFn& reference,
+                          const CheckFn& env_reference) {
   CheckScratch scratch = model.makeScratch();
   const RobotModel& robot = model.robot();
   const bool free_flying = robot.isFreeFlying();
@@ -243,7 +251,7 @@ Measurement measureOctree(const OctreeCollisionModel& model, CheckerPath path, c
                                 free_flying ? states.X_WB[i] : model.baseMount());
         return model.environmentInCollision(path, scratch);
       },
-      reference);
+      reference, env_reference);
 }
 
 std::vector<bool> prefix(const std::vector<bool>& v, std::size_t n) {
@@ -592,10 +600,14 @@ TradeStudyResult runTradeStudy(const TradeStudyOptions& options) {
   }
 
   for (double resolution : resolutions) {
-    double octomap_env_mean = -1;
+    // FCL+OctoMap's environment-only check at this resolution, paired with every octree
+    // setting's environment-only passes (CheckRow::env_speedup_vs_fcl_octomap).
+    std::shared_ptr<const FclOctomapCollisionModel> octomap;
+    FclOctomapCollisionModel::ScratchPtr octomap_scratch;
+    CheckFn octomap_env_check;
     if (options.fcl_octomap) {
       try {
-        auto octomap = std::make_shared<const FclOctomapCollisionModel>(
+        octomap = std::make_shared<const FclOctomapCollisionModel>(
             robot, environment, resolution, spec.robot.keep_mesh_root_transform,
             spec.robot.center_mesh_vertices);
         const Measurement m = measureFclLike(*octomap, states, states.count, fcl_check);
@@ -607,8 +619,12 @@ TradeStudyResult runTradeStudy(const TradeStudyOptions& options) {
         row.memory_bytes = octomap->octomapBytes();
         row.build_seconds = octomap->buildSeconds();
         row.speedup_vs_fcl = m.speedup;
-        octomap_env_mean = row.env_mean_us;
         result.checks.push_back(row);
+        octomap_scratch = octomap->makeScratch();
+        octomap_env_check = [&states, &octomap, &octomap_scratch](std::size_t i) {
+          octomap->setConfiguration(states.at(i), states.dof, states.X_WB[i], *octomap_scratch);
+          return octomap->environmentInCollision(*octomap_scratch);
+        };
         say(spec.name + ": " + settingName("fcl-octomap", resolution, "") + " " + fmt(row.mean_us) +
             " us mean");
         if (planning && (options.plan_every_setting || resolution == scene_rung)) {
@@ -650,7 +666,8 @@ TradeStudyResult runTradeStudy(const TradeStudyOptions& options) {
         const std::size_t count = path == CheckerPath::kMoveTree && options.move_tree_states > 0
                                       ? std::min(options.move_tree_states, states.count)
                                       : states.count;
-        const Measurement m = measureOctree(*model, path, states, count, fcl_check);
+        const Measurement m =
+            measureOctree(*model, path, states, count, fcl_check, octomap_env_check);
         CheckRow row;
         row.scene = spec.name;
         row.checker = checker;
@@ -660,8 +677,7 @@ TradeStudyResult runTradeStudy(const TradeStudyOptions& options) {
         row.memory_bytes = octreeBytes(*model);
         row.build_seconds = build;
         row.speedup_vs_fcl = m.speedup;
-        if (octomap_env_mean > 0)
-          row.env_speedup_vs_fcl_octomap = octomap_env_mean / row.env_mean_us;
+        row.env_speedup_vs_fcl_octomap = m.env_speedup;
         result.checks.push_back(row);
         say(spec.name + ": " + settingName(checker, resolution, row.rounding) + " " +
             fmt(row.mean_us) + " us mean, FP " + fmt(100 * row.fp_rate) + " %, FN " +

@@ -127,6 +127,9 @@ TEST(TradeStudyTest, ConservativeSettingsHaveNoFalseNegatives) {
     }
     if (r.checker.rfind("octree", 0) == 0) {
       EXPECT_GT(r.memory_bytes, 0u);
+      // Paired with FCL+OctoMap's environment-only passes at the same resolution.
+      EXPECT_GT(r.env_speedup_vs_fcl_octomap, 0.0) << r.checker << " " << r.resolution;
+      EXPECT_GT(r.env_mean_us, 0.0);
     }
   }
   // Both paths answer identically for the same model.

@@ -71,7 +71,7 @@ struct CheckRow {
   double mean_us = 0;  // full check (environment and self-collision); median of 5 timed passes
   double median_free_us = 0, p90_free_us = 0;
   double median_colliding_us = 0, p90_colliding_us = 0;
-  double env_mean_us = -1;          // environment only; -1 when the checker cannot split it
+  double env_mean_us = -1;          // environment only (median of 5 passes); -1 when not measured
   std::size_t false_positives = 0;  // says collision, FCL says free
   std::size_t false_negatives = 0;  // says free, FCL says collision
   double fp_rate = 0;               // false_positives / free_states
@@ -86,8 +86,10 @@ struct CheckRow {
   // same states right before this checker's pass (so both see the same machine load); it can
   // differ a little from the ratio of the two mean_us, each a median over its own rounds.
   double speedup_vs_fcl = 1;
-  double env_speedup_vs_fcl_octomap = -1;  // FCL+OctoMap's environment-only mean at the same
-                                           // resolution / this one's; -1 when not measured
+  // FCL+OctoMap's environment-only time at the same resolution / this one's, paired like
+  // speedup_vs_fcl (an FCL+OctoMap environment-only pass right before each of this checker's);
+  // -1 when not measured.
+  double env_speedup_vs_fcl_octomap = -1;
 };
 
 struct PlanRow {
