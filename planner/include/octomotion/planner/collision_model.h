@@ -98,8 +98,8 @@ struct CollisionModelOptions {
   std::optional<double> link_resolution;
   // Source-tree voxel size for the self-collision pairs; default: link_resolution when that is
   // set, else resolution (finer self trees cost more than they save on robots that self-collide
-  // often, such as octo6; docs/trade-off.md). Other than link_resolution, each link in a self
-  // pair keeps a second tree used only against the other links.
+  // often, such as octo6; docs/trade-off.md). When it differs from link_resolution, each link
+  // in a self pair keeps a second tree used only against the other links.
   std::optional<double> self_link_resolution;
   Rounding rounding = Rounding::kConservative;
   // Fixed-base robots: the root link's pose. Free-flying robots: ignored.
