@@ -227,13 +227,12 @@ OctreeCollisionModel::OctreeCollisionModel(RobotModel robot, const EnvironmentGe
   if (!(std::isfinite(options.resolution) && options.resolution > 0)) {
     throw InvalidArgument("resolution must be finite and > 0");
   }
-  const double link_res =
-      options.link_resolution.value_or(options.resolution * kDefaultLinkResolutionRatio);
+  const LinkTreeResolutions tree_res = linkTreeResolutions(
+      options.resolution, options.link_resolution, options.self_link_resolution);
+  const double link_res = tree_res.link, self_res = tree_res.self;
   if (!(std::isfinite(link_res) && link_res > 0)) {
     throw InvalidArgument("link resolution must be finite and > 0");
   }
-  const double self_res = options.self_link_resolution.value_or(
-      options.link_resolution ? *options.link_resolution : options.resolution);
   if (!(std::isfinite(self_res) && self_res > 0)) {
     throw InvalidArgument("self-collision link resolution must be finite and > 0");
   }

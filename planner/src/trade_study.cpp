@@ -539,10 +539,10 @@ TradeStudyResult runTradeStudy(const TradeStudyOptions& options) {
   result.scene = spec.name;
   result.free_flying = free_flying;
   result.scene_resolution = scene.resolution;
-  result.link_resolution_ratio =
-      options.link_resolution_ratio.value_or(kDefaultLinkResolutionRatio);
-  result.self_link_resolution_ratio = options.self_link_resolution_ratio.value_or(
-      options.link_resolution_ratio ? *options.link_resolution_ratio : 1.0);
+  const LinkTreeResolutions ratios =
+      linkTreeResolutions(1.0, options.link_resolution_ratio, options.self_link_resolution_ratio);
+  result.link_resolution_ratio = ratios.link;
+  result.self_link_resolution_ratio = ratios.self;
   result.self_pair_tables = spec.octree.self_pair_tables;
   std::vector<double> resolutions = options.resolutions.empty()
                                         ? defaultResolutions(free_flying, scene.resolution)

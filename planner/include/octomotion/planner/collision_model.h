@@ -91,6 +91,19 @@ std::uint64_t nextModelId();
 // 0.25 s and 1.7 MB against 0.04 s and 0.7 MB at 1; docs/trade-off.md, "Finer link trees").
 inline constexpr double kDefaultLinkResolutionRatio = 0.25;
 
+// The voxel sizes of a model's link trees, for the environment queries and for the self pairs,
+// with the defaults of CollisionModelOptions::link_resolution and ::self_link_resolution applied
+// (the one place they are; the trade study resolves its ratios with it at resolution 1).
+struct LinkTreeResolutions {
+  double link, self;
+};
+inline LinkTreeResolutions linkTreeResolutions(double resolution,
+                                               std::optional<double> link_resolution,
+                                               std::optional<double> self_link_resolution) {
+  const double link = link_resolution.value_or(resolution * kDefaultLinkResolutionRatio);
+  return {link, self_link_resolution.value_or(link_resolution ? link : resolution)};
+}
+
 struct CollisionModelOptions {
   double resolution = 0.01;  // environment voxel size (metres)
   // Source-tree voxel size for the environment queries; default: resolution x
