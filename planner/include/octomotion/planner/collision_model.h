@@ -9,6 +9,7 @@
 // point octrees of the environment's black leaves (ClearanceMethod): docs/planner.md.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -295,8 +296,28 @@ class OctreeCollisionModel {
                                  const std::vector<const TriangleMesh*>& element_mesh,
                                  Eigen::AlignedBox3d box_L, double resolution,
                                  const CollisionModelOptions& options, bool for_self_pairs);
-  bool linkHitsEnvironment(const LinkTree& lt, const Eigen::Isometry3d& X_WL, CheckerPath path,
-                           CollisionScratch& fused) const;
+  // What the environment pre-test reads of a link, in one flat record per link that can touch
+  // the environment (a rejected link touches nothing else).
+  struct EnvironmentLinkTest {
+    Eigen::Vector3d center_L;  // the link box's centre and half sides (LinkVoxels)
+    Eigen::Vector3d half_L;
+    double reach_squared = 0;         // (bounding radius + one environment voxel diagonal)^2
+    double origin_reach_squared = 0;  // (that reach + |center_L|)^2, about the link's origin
+    int link = -1;                    // robot link index
+    std::size_t slot = 0;             // in links_
+  };
+  EnvironmentLinkTest environmentTest(std::size_t slot) const;
+  // The link's bounding sphere, grown by a voxel diagonal, reaches `box` (inline: the first
+  // stage of the environment pre-test, run for every link of every check).
+  static bool sphereMeetsBox(const EnvironmentLinkTest& t, const Eigen::Isometry3d& X_WL,
+                             const Eigen::AlignedBox3d& box);
+  // For a link whose bounding sphere reaches the environment's box (sphereMeetsBox): false when its
+  // oriented box meets neither the environment's box nor (kObjectBoxes) any object's box, so it
+  // cannot meet an environment voxel.
+  bool linkNearEnvironment(const EnvironmentLinkTest& t, const Eigen::Isometry3d& X_WL) const;
+  // linkNearEnvironment, then the link's query against the environment tree.
+  bool linkHitsEnvironment(const EnvironmentLinkTest& t, const Eigen::Isometry3d& X_WL,
+                           CheckerPath path, CollisionScratch& fused) const;
   // The self-pair test in two stages, cheapest first. The bounding spheres (centres in W from
   // placeCentres) are close enough for B's voxels placed on A's grid to reach A when their
   // centres are within spheresReach of each other.
@@ -341,11 +362,14 @@ class OctreeCollisionModel {
   Eigen::AlignedBox3d environment_box_W_;  // world box of the environment's black voxels
   // kObjectBoxes: each object's box grown by a voxel (so it holds the object's black voxels).
   std::vector<Eigen::AlignedBox3d> object_boxes_W_;
+  // The same boxes for the pre-test's first three axes, one array per axis (centre, and half
+  // side plus the tie margin), precomputed: most boxes are rejected there.
+  std::array<std::vector<double>, 3> object_centre_W_, object_reach_W_;
   std::vector<LinkTree> links_;  // modelled links only
-  // Slots of the links that can touch the environment, in the order environmentInCollision
-  // tests them: most often hit first (LinkReport::environment_hit_share), ties in model order.
-  // Free states test them all either way; colliding ones stop sooner.
-  std::vector<std::size_t> environment_order_;
+  // The links that can touch the environment, in the order environmentInCollision tests them:
+  // most often hit first (LinkReport::environment_hit_share), ties in model order. Free states
+  // test them all either way; colliding ones stop sooner.
+  std::vector<EnvironmentLinkTest> environment_tests_;
   void orderEnvironmentLinks();
   std::vector<const LinkVoxels*> self_voxels_;  // per slot: links_[slot].forSelf(), one load
   std::vector<int> link_slot_;                  // robot link index -> index in links_, or -1
