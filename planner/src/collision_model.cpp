@@ -17,6 +17,7 @@
 #include "octomotion/motion/collides.h"
 #include "octomotion/motion/move_tree.h"
 #include "octomotion/motion/pose.h"
+#include "octomotion/octree/inner_boxes.h"
 #include "octomotion/octree/mesh.h"
 #include "octomotion/octree/set_ops.h"
 #include "octomotion/octree/traversal.h"
@@ -183,6 +184,16 @@ OctreeCollisionModel::LinkVoxels OctreeCollisionModel::voxelizeLink(
     v.center_L = (lo + hi) / 2;
     v.half_L = (hi - lo) / 2;
     v.radius = (hi - lo).norm() / 2;
+  }
+  if (!for_self_pairs && options.core_boxes && options.rounding == Rounding::kConservative) {
+    const double shrink = kSolidShrink * std::max(resolution, options.resolution);
+    // Three boxes of cells of 1/64 of the link's universe: more boxes found nothing more on
+    // octo7 in the bookshelf (callgrind, 3,000 states: 6 or 10 boxes +0.0-0.2 % instructions),
+    // 1/128 cells 2.7 % fewer instructions for 8x the cells to build them from.
+    for (const Eigen::AlignedBox3d& box : innerBoxes(source)) {
+      const Eigen::Vector3d half = box.sizes() / 2 - Eigen::Vector3d::Constant(shrink);
+      if ((half.array() > 0).all()) v.core_boxes.push_back({box.center(), half});
+    }
   }
   v.source = std::move(source);
   // Self trees are only ever tested against other self trees of the same resolution.
@@ -364,6 +375,7 @@ OctreeCollisionModel::OctreeCollisionModel(RobotModel robot, const EnvironmentGe
     lr.source_bytes = source.bytes();
     lr.source_depth = source.grid().depth();
     lr.radius = lt.voxels.radius;
+    lr.core_boxes = static_cast<int>(lt.voxels.core_boxes.size());
     lr.build_seconds = secondsSince(t0);
   }
 
@@ -428,6 +440,43 @@ OctreeCollisionModel::OctreeCollisionModel(RobotModel robot, const EnvironmentGe
   }
   if (report_.environment_pre_test != EnvironmentPreTest::kObjectBoxes) object_boxes_W_.clear();
   report_.environment_object_boxes = object_boxes_W_.size();
+  // 5b. Box obstacles for the links' core boxes (conservative rounding): their parts inside the
+  // universe (a moved link voxel outside it is dropped), shrunk like the cores.
+  if (options.core_boxes && options.rounding == Rounding::kConservative) {
+    const double shrink = kSolidShrink * std::max(options.resolution, link_res);
+    const Eigen::AlignedBox3d inner_universe_W(universe_W.min().array() + shrink,
+                                               universe_W.max().array() - shrink);
+    for (const EnvironmentGeometry::Item& item : environment.items()) {
+      if (item.spec.kind != EnvironmentObject::Kind::kPrimitive) continue;
+      const Box* box = std::get_if<Box>(&item.spec.primitive);
+      if (!box) continue;
+      const Eigen::Matrix3d& R_WO = item.spec.X_WO.linear();
+      const Eigen::Vector3d extent_W = R_WO.cwiseAbs() * box->half_extents;
+      const Eigen::AlignedBox3d aabb_W(item.spec.X_WO.translation() - extent_W,
+                                       item.spec.X_WO.translation() + extent_W);
+      SolidBox solid;
+      if (inner_universe_W.contains(aabb_W)) {
+        solid.centre_W = item.spec.X_WO.translation();
+        solid.R_OW = R_WO.transpose();
+        solid.half = box->half_extents - Eigen::Vector3d::Constant(shrink);
+        solid.extent_W = extent_W;
+      } else if ((R_WO.array() == 0 || R_WO.array().abs() == 1).all()) {
+        // Exactly axis-aligned (a box crossing the universe's side, e.g. a floor beyond the
+        // robot's reach): the part inside the universe, which is its own world box.
+        const Eigen::AlignedBox3d inside = aabb_W.intersection(inner_universe_W);
+        if (inside.isEmpty()) continue;
+        solid.centre_W = inside.center();
+        solid.R_OW = Eigen::Matrix3d::Identity();
+        solid.half = inside.sizes() / 2 - Eigen::Vector3d::Constant(shrink);
+        solid.extent_W = inside.sizes() / 2;
+      } else {
+        continue;  // rotated and leaving the universe
+      }
+      if (!(solid.half.array() > 0).all()) continue;
+      solid_boxes_W_.push_back(solid);
+    }
+  }
+  report_.environment_solid_boxes = solid_boxes_W_.size();
   const double tie_margin = kMotionTieTolerance * grid.voxelSize();
   for (const Eigen::AlignedBox3d& box : object_boxes_W_) {
     for (int a = 0; a < 3; ++a) {
@@ -719,11 +768,30 @@ bool OctreeCollisionModel::linkNearEnvironment(const EnvironmentLinkTest& t,
   return false;
 }
 
+bool OctreeCollisionModel::certainContact(const LinkVoxels& v,
+                                          const Eigen::Isometry3d& X_WL) const {
+  if (v.core_boxes.empty()) return false;
+  const Eigen::Matrix3d& R_WL = X_WL.linear();
+  // The link box's extent along the world axes, to skip far obstacles with three comparisons.
+  const Eigen::Vector3d c_W = X_WL * v.center_L;
+  const Eigen::Vector3d h_W = R_WL.cwiseAbs() * v.half_L;
+  for (const SolidBox& solid : solid_boxes_W_) {
+    if (((c_W - solid.centre_W).cwiseAbs() - solid.extent_W - h_W).maxCoeff() > 0) continue;
+    const Eigen::Matrix3d R_OL = solid.R_OW * R_WL;
+    for (const LinkVoxels::CoreBox& core : v.core_boxes) {
+      const Eigen::Vector3d t_O = solid.R_OW * (X_WL * core.centre_L - solid.centre_W);
+      if (boxesOverlap(Eigen::Vector3d::Zero(), solid.half, R_OL, t_O, core.half_L)) return true;
+    }
+  }
+  return false;
+}
+
 bool OctreeCollisionModel::linkHitsEnvironment(const EnvironmentLinkTest& t,
                                                const Eigen::Isometry3d& X_WL, CheckerPath path,
                                                CollisionScratch& fused) const {
   if (!linkNearEnvironment(t, X_WL)) return false;
   const LinkVoxels& v = links_[t.slot].voxels;
+  if (certainContact(v, X_WL)) return true;
   if (path == CheckerPath::kFused) {
     return collides(*v.movable, X_WL, environment_, options_.rounding, fused, nullptr,
                     environment_cells_.get(), environment_clearance_.get());
@@ -985,7 +1053,7 @@ std::string CollisionModelReport::toString() const {
     }
     out << l.source_internal_nodes << " internal nodes, " << l.source_black_leaves
         << " black leaves, " << l.source_bytes << " bytes, depth " << l.source_depth << ", radius "
-        << l.radius << " m, " << l.build_seconds << " s";
+        << l.radius << " m, " << l.core_boxes << " core boxes, " << l.build_seconds << " s";
     if (l.self_source_bytes > 0) out << "; self-collision tree " << l.self_source_bytes << " bytes";
     out << "\n";
   }
@@ -993,7 +1061,8 @@ std::string CollisionModelReport::toString() const {
       << (environment_pre_test == EnvironmentPreTest::kObjectBoxes
               ? "object boxes (" + std::to_string(environment_object_boxes) + ")"
               : std::string("environment box"))
-      << "\n";
+      << "; certain contacts: links' core boxes against " << environment_solid_boxes
+      << " box obstacles\n";
   out << "environment tested in the order (share of sampled states hitting):";
   for (const std::string& name : environment_order) {
     out << " " << name;

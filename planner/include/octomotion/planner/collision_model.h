@@ -147,6 +147,12 @@ struct CollisionModelOptions {
   double self_pair_table_tolerance = 5e-4;        // metres, > 0
   std::size_t self_pair_table_max_cells = 60000;  // FCL classifications per pair
   std::size_t self_pair_table_max_variables = 2;
+  // Conservative rounding: each link's environment tree gets up to three boxes inside its black
+  // voxels (innerBoxes), and a link that passes the pre-test is first tested for a certain
+  // contact: one of those boxes overlapping a box obstacle (a box primitive inside the
+  // universe). Same answers (both voxelizations keep the voxels the two boxes overlap); the tree
+  // query is skipped where a link crosses a board or a wall.
+  bool core_boxes = true;
   WarningSink warnings;
 };
 
@@ -164,6 +170,7 @@ struct LinkReport {
   // environment's (arms; -1 when not sampled): the environment half tests links in decreasing
   // share, so a colliding state usually stops at its first tree query.
   double environment_hit_share = -1;
+  int core_boxes = 0;  // CollisionModelOptions::core_boxes: boxes inside the environment tree
 };
 
 // Joint states sampled at build time to order the environment half's links (arms only).
@@ -196,6 +203,7 @@ struct CollisionModelReport {
   SelfBroadPhase self_broad_phase = SelfBroadPhase::kPairs;  // resolved (never kAuto)
   EnvironmentPreTest environment_pre_test = EnvironmentPreTest::kEnvironmentBox;  // resolved
   std::size_t environment_object_boxes = 0;  // object boxes the pre-test loops over
+  std::size_t environment_solid_boxes = 0;   // box obstacles the links' core boxes are tested on
   int environment_cell_grid_level = -1;      // BlackCellGrid of the environment (-1: none)
   std::size_t environment_cell_grid_bytes = 0;
   int environment_clearance_grid_level = -1;  // ClearanceGrid of the environment (-1: none)
@@ -279,7 +287,25 @@ class OctreeCollisionModel {
     double radius = 0;
     Eigen::Vector3d half_L = Eigen::Vector3d::Zero();  // their box: centre center_L, half-sides
     double source_diagonal = 0;                        // of one source voxel (metres)
+    // Boxes inside the black voxels (CollisionModelOptions::core_boxes), shrunk by kSolidShrink.
+    struct CoreBox {
+      Eigen::Vector3d centre_L, half_L;
+    };
+    std::vector<CoreBox> core_boxes;
   };
+  // A box obstacle, shrunk by kSolidShrink: every voxel it overlaps is black in the environment.
+  struct SolidBox {
+    Eigen::Vector3d centre_W, half;
+    Eigen::Matrix3d R_OW;      // world to the box's axes
+    Eigen::Vector3d extent_W;  // half sides of its world AABB
+  };
+  // Boxes of a certain contact are shrunk by this share of the larger voxel size: a point of
+  // both then has a ball about it in both boxes, so the target voxel holding it overlaps the
+  // obstacle and a moved link voxel by far more than the colour rules' ties (1e-6 voxel).
+  static constexpr double kSolidShrink = 1e-3;
+  // One of the link's core boxes overlaps a solid box obstacle: the link's moved tree and the
+  // environment share a black voxel.
+  bool certainContact(const LinkVoxels& v, const Eigen::Isometry3d& X_WL) const;
   struct LinkTree {
     int link = -1;
     LinkVoxels voxels;  // tested against the environment (and the other links, unless below)
@@ -365,6 +391,7 @@ class OctreeCollisionModel {
   // The same boxes for the pre-test's first three axes, one array per axis (centre, and half
   // side plus the tie margin), precomputed: most boxes are rejected there.
   std::array<std::vector<double>, 3> object_centre_W_, object_reach_W_;
+  std::vector<SolidBox> solid_boxes_W_;
   std::vector<LinkTree> links_;  // modelled links only
   // The links that can touch the environment, in the order environmentInCollision tests them:
   // most often hit first (LinkReport::environment_hit_share), ties in model order. Free states

@@ -1,0 +1,111 @@
+// Certain contacts (CollisionModelOptions::core_boxes): a link's core box overlapping a box
+// obstacle answers "in collision" without the tree query. The answers must be exactly those of
+// the same model without core boxes, on both checker paths, at several resolutions, with boards
+// thin and thick, axis-aligned and rotated, and walls reaching out of the universe.
+#include <gtest/gtest.h>
+
+#include <random>
+#include <string>
+#include <vector>
+
+#include "joint_states.h"
+#include "octomotion/planner/collision_model.h"
+#include "snake_robot.h"
+
+namespace octomotion {
+namespace {
+
+RobotModel snake(int links, double limit) {
+  return RobotModel::fromUrdfString(test::snakeUrdf(links, limit), "snake.urdf", ".");
+}
+
+std::vector<EnvironmentObject> boards(std::uint64_t seed, bool rotated) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::vector<EnvironmentObject> objects;
+  for (int i = 0; i < 12; ++i) {
+    EnvironmentObject box;
+    box.name = "board" + std::to_string(i);
+    // Thin boards (3 mm to 2 cm) up to 40 cm wide, and a few thick blocks.
+    const double thick =
+        i % 4 == 0 ? 0.05 + 0.05 * std::abs(u(rng)) : 0.0015 + 0.0085 * std::abs(u(rng));
+    box.primitive =
+        Box{Eigen::Vector3d(0.05 + 0.15 * std::abs(u(rng)), 0.05 + 0.15 * std::abs(u(rng)), thick)};
+    if (rotated) {
+      box.X_WO.linear() = Eigen::Quaterniond(u(rng), u(rng), u(rng), u(rng)).normalized().matrix();
+    }
+    box.X_WO.translation() = 0.4 * Eigen::Vector3d(u(rng), u(rng), u(rng));
+    objects.push_back(box);
+  }
+  // Two reaching beyond the robot, so out of the universe (fit to the reach): the axis-aligned
+  // one is clipped to it, the rotated one is left out.
+  EnvironmentObject wall;
+  wall.name = "wall";
+  wall.primitive = Box{Eigen::Vector3d(0.2, 2.0, 2.0)};
+  wall.X_WO.translation() = Eigen::Vector3d(0.65, 0, 0);
+  objects.push_back(wall);
+  wall.name = "tilted_wall";
+  wall.X_WO = Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitY()) *
+              Eigen::Translation3d(Eigen::Vector3d(-0.7, 0, 0));
+  objects.push_back(wall);
+  return objects;
+}
+
+TEST(CoreBoxes, SameAnswersAsTheTreeQueries) {
+  const RobotModel robot = snake(6, 1.6);
+  const auto states = test::uniformJointStates(robot, 1500, 9);
+  int certain_models = 0;
+  for (const bool rotated : {false, true}) {
+    const EnvironmentGeometry env = EnvironmentGeometry::load(boards(rotated ? 5 : 6, rotated));
+    for (const double res : {0.02, 0.01, 0.005}) {
+      CollisionModelOptions o;
+      o.resolution = res;
+      o.link_resolution = res;  // the moveTree path materialises every link leaf
+      const OctreeCollisionModel with(robot, env, o);
+      o.core_boxes = false;
+      const OctreeCollisionModel without(robot, env, o);
+      EXPECT_EQ(without.report().environment_solid_boxes, 0u);
+      for (const LinkReport& l : without.report().links) EXPECT_EQ(l.core_boxes, 0);
+      const std::size_t solids = with.report().environment_solid_boxes;
+      EXPECT_LE(solids, 13u);  // never the tilted wall
+      int cores = 0;
+      for (const LinkReport& l : with.report().links) cores += l.core_boxes;
+      certain_models += solids > 0 && cores > 0;
+      for (const CheckerPath path : {CheckerPath::kFused, CheckerPath::kMoveTree}) {
+        if (path == CheckerPath::kMoveTree && res < 0.01) continue;  // slow, same code path
+        CheckScratch a = with.makeScratch(), b = without.makeScratch();
+        int hits = 0;
+        for (std::size_t i = 0; i < states.size(); ++i) {
+          const auto& q = states[i];
+          robot.forwardKinematics(q.data(), q.size(), a.robot);
+          robot.forwardKinematics(q.data(), q.size(), b.robot);
+          const bool expected = without.environmentInCollision(path, b);
+          ASSERT_EQ(with.environmentInCollision(path, a), expected)
+              << "state " << i << ", resolution " << res << (rotated ? ", rotated" : "");
+          hits += expected;
+        }
+        EXPECT_GT(hits, 150);  // both answers are exercised
+        EXPECT_LT(hits, 1350);
+      }
+    }
+  }
+  EXPECT_EQ(certain_models, 6);
+}
+
+TEST(CoreBoxes, OnlyUnderConservativeRounding) {
+  const RobotModel robot = snake(5, 1.0);
+  const EnvironmentGeometry env = EnvironmentGeometry::load(boards(7, false));
+  CollisionModelOptions o;
+  o.resolution = 0.01;
+  o.rounding = Rounding::kCenter;
+  const OctreeCollisionModel centre(robot, env, o);
+  EXPECT_EQ(centre.report().environment_solid_boxes, 0u);
+  for (const LinkReport& l : centre.report().links) EXPECT_EQ(l.core_boxes, 0);
+  o.rounding = Rounding::kConservative;
+  const OctreeCollisionModel conservative(robot, env, o);
+  EXPECT_GT(conservative.report().environment_solid_boxes, 0u);
+  EXPECT_NE(conservative.report().toString().find("core boxes"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace octomotion
