@@ -440,8 +440,8 @@ OctreeCollisionModel::OctreeCollisionModel(RobotModel robot, const EnvironmentGe
   }
   if (report_.environment_pre_test != EnvironmentPreTest::kObjectBoxes) object_boxes_W_.clear();
   report_.environment_object_boxes = object_boxes_W_.size();
-  // 5b. Box obstacles for the links' core boxes (conservative rounding): their parts inside the
-  // universe (a moved link voxel outside it is dropped), shrunk like the cores.
+  // 5a'. Box obstacles for the links' core boxes (conservative rounding): their parts inside
+  // the universe (a moved link voxel outside it is dropped), shrunk like the cores.
   if (options.core_boxes && options.rounding == Rounding::kConservative) {
     const double shrink = kSolidShrink * std::max(options.resolution, link_res);
     const Eigen::AlignedBox3d inner_universe_W(universe_W.min().array() + shrink,

@@ -149,9 +149,10 @@ struct CollisionModelOptions {
   std::size_t self_pair_table_max_variables = 2;
   // Conservative rounding: each link's environment tree gets up to three boxes inside its black
   // voxels (innerBoxes), and a link that passes the pre-test is first tested for a certain
-  // contact: one of those boxes overlapping a box obstacle (a box primitive inside the
-  // universe). Same answers (both voxelizations keep the voxels the two boxes overlap); the tree
-  // query is skipped where a link crosses a board or a wall.
+  // contact: one of those boxes overlapping a box obstacle (a box primitive of the scene: its
+  // part inside the universe; a rotated one only when wholly inside). Same answers (both
+  // voxelizations keep the voxels the two boxes overlap); the tree query is skipped where a link
+  // crosses a board or a wall.
   bool core_boxes = true;
   WarningSink warnings;
 };
