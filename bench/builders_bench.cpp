@@ -1,10 +1,12 @@
 // Build time of the top-down builders (Weng & Ahuja 1987 §4 descent) for an analytic sphere and
 // for ~10k-triangle meshes (a UV sphere and a torus), depths 8-10, both rounding modes.
-// Counters: internal nodes of the result, and nodes built per second.
+// Counters: internal nodes of the result, and nodes built per second. Also the core boxes of a
+// link-like cylinder (innerBoxes, built once per link by the planner), depths 6-8.
 //
 //   build-<name>/bench/builders_bench --benchmark_filter=.
 #include <benchmark/benchmark.h>
 
+#include "octomotion/octree/inner_boxes.h"
 #include "octomotion/octree/mesh.h"
 #include "octomotion/octree/voxelize.h"
 
@@ -77,6 +79,27 @@ void buildArgs(benchmark::internal::Benchmark* b) {
   }
   b->Unit(benchmark::kMillisecond)->Repetitions(5)->ReportAggregatesOnly(true);
 }
+
+// A link-like cylinder, tilted in its grid (the hard case for axis-aligned boxes: a link's
+// cylinder usually lies along an axis of its frame). Counters: boxes found and the share of the
+// black volume the first box holds.
+void BM_InnerBoxesCylinder(benchmark::State& state) {
+  const WorldGrid grid = unitGrid(static_cast<int>(state.range(0)));
+  const Octree link = voxelize(grid, Cylinder{0.2, 0.8}, centredPose(), Rounding::kConservative);
+  std::vector<Eigen::AlignedBox3d> boxes;
+  for (auto _ : state) {
+    boxes = innerBoxes(link);
+    benchmark::DoNotOptimize(boxes.data());
+  }
+  state.counters["boxes"] = static_cast<double>(boxes.size());
+  state.counters["first box share"] = boxes.empty() ? 0.0 : boxes[0].volume() / link.volume();
+}
+BENCHMARK(BM_InnerBoxesCylinder)
+    ->ArgName("depth")
+    ->DenseRange(6, 8)
+    ->Unit(benchmark::kMillisecond)
+    ->Repetitions(5)
+    ->ReportAggregatesOnly(true);
 
 BENCHMARK(BM_Sphere)->Apply(buildArgs);
 BENCHMARK(BM_SphereMesh10k)->Apply(buildArgs);
