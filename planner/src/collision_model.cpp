@@ -713,23 +713,11 @@ OctreeCollisionModel::EnvironmentLinkTest OctreeCollisionModel::environmentTest(
 // over links, on the link frame's origin alone (a sphere about it, of radius |center_L| plus
 // the bounding sphere's reach, holds that sphere: no transform of the centre), then on the
 // sphere itself.
-namespace {
-inline bool pointNearBox(const double* p, double reach_squared, const Eigen::AlignedBox3d& box) {
-  double d2 = 0;
-  for (int a = 0; a < 3; ++a) {
-    const double outside = std::max(box.min()[a] - p[a], p[a] - box.max()[a]);
-    if (outside > 0) d2 += outside * outside;
-  }
-  return d2 <= reach_squared;
-}
-}  // namespace
-
 inline bool OctreeCollisionModel::sphereMeetsBox(const EnvironmentLinkTest& t,
                                                  const Eigen::Isometry3d& X_WL,
                                                  const Eigen::AlignedBox3d& box) {
-  if (!pointNearBox(X_WL.translation().data(), t.origin_reach_squared, box)) return false;
-  const Eigen::Vector3d c_W = X_WL * t.center_L;
-  return pointNearBox(c_W.data(), t.reach_squared, box);
+  return squaredDistanceToBox(X_WL.translation(), box) <= t.origin_reach_squared &&
+         squaredDistanceToBox(X_WL * t.center_L, box) <= t.reach_squared;
 }
 
 bool OctreeCollisionModel::linkNearEnvironment(const EnvironmentLinkTest& t,
