@@ -788,14 +788,14 @@ bool OctreeCollisionModel::linkHitsEnvironment(const EnvironmentLinkTest& t,
 }
 
 void OctreeCollisionModel::orderEnvironmentLinks() {
-  std::vector<std::size_t> order;
+  // One test record per link that can touch the environment, in model order, reordered below.
   for (std::size_t slot = 0; slot < links_.size(); ++slot) {
-    if (links_[slot].touches_environment) order.push_back(slot);
+    if (links_[slot].touches_environment) environment_tests_.push_back(environmentTest(slot));
   }
   // Free-flying robots have no joint limits to sample their poses from (the scene's bounds are
   // the planner's): model order.
-  if (!robot_.isFreeFlying() && order.size() > 1 && !robot_.variables().empty()) {
-    std::vector<int> hits(links_.size(), 0);
+  if (!robot_.isFreeFlying() && environment_tests_.size() > 1 && !robot_.variables().empty()) {
+    std::vector<int> hits(links_.size(), 0);  // per slot
     std::vector<double> q(robot_.variables().size());
     RobotData data = robot_.makeData();
     CollisionScratch fused;
@@ -803,25 +803,25 @@ void OctreeCollisionModel::orderEnvironmentLinks() {
     for (int i = 0; i < kEnvironmentOrderSamples; ++i) {
       for (std::size_t v = 0; v < q.size(); ++v) q[v] = uniformIn(robot_.variables()[v], rng);
       robot_.forwardKinematics(q.data(), q.size(), data, options_.X_WB);
-      for (const std::size_t slot : order) {
-        const EnvironmentLinkTest t = environmentTest(slot);
+      for (const EnvironmentLinkTest& t : environment_tests_) {
         const Eigen::Isometry3d& X_WL = data.linkPose(t.link);
         if (sphereMeetsBox(t, X_WL, environment_box_W_) &&
             linkHitsEnvironment(t, X_WL, CheckerPath::kFused, fused)) {
-          ++hits[slot];
+          ++hits[t.slot];
         }
       }
     }
-    std::stable_sort(order.begin(), order.end(),
-                     [&](std::size_t a, std::size_t b) { return hits[a] > hits[b]; });
-    for (const std::size_t slot : order) {
-      report_.links[static_cast<std::size_t>(links_[slot].link)].environment_hit_share =
-          static_cast<double>(hits[slot]) / kEnvironmentOrderSamples;
+    std::stable_sort(environment_tests_.begin(), environment_tests_.end(),
+                     [&](const EnvironmentLinkTest& a, const EnvironmentLinkTest& b) {
+                       return hits[a.slot] > hits[b.slot];
+                     });
+    for (const EnvironmentLinkTest& t : environment_tests_) {
+      report_.links[static_cast<std::size_t>(t.link)].environment_hit_share =
+          static_cast<double>(hits[t.slot]) / kEnvironmentOrderSamples;
     }
   }
-  for (const std::size_t slot : order) {
-    environment_tests_.push_back(environmentTest(slot));
-    report_.environment_order.push_back(robot_.link(links_[slot].link).name);
+  for (const EnvironmentLinkTest& t : environment_tests_) {
+    report_.environment_order.push_back(robot_.link(t.link).name);
   }
 }
 
