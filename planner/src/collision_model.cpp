@@ -52,6 +52,19 @@ double squaredDistanceToBox(const Eigen::Vector3d& p, const Eigen::AlignedBox3d&
   return (p - p.cwiseMax(box.min()).cwiseMin(box.max())).squaredNorm();
 }
 
+// The half sides of a box inside the primitive, centred on its frame and along its axes:
+// the box itself; for a ball, the inscribed cube; for a cylinder, its full length over the
+// square inscribed in its disc (the largest cross-section a box can have there).
+Eigen::Vector3d inscribedBoxHalfSides(const Primitive& shape) {
+  if (const Box* box = std::get_if<Box>(&shape)) return box->half_extents;
+  if (const Sphere* ball = std::get_if<Sphere>(&shape)) {
+    return Eigen::Vector3d::Constant(ball->radius / std::sqrt(3.0));
+  }
+  const Cylinder& rod = std::get<Cylinder>(shape);
+  const double side = rod.radius / std::sqrt(2.0);
+  return Eigen::Vector3d(side, side, rod.length / 2);
+}
+
 double distanceToBox(const Eigen::Vector3d& p, const Eigen::AlignedBox3d& box) {
   return std::sqrt(squaredDistanceToBox(p, box));
 }
@@ -440,25 +453,25 @@ OctreeCollisionModel::OctreeCollisionModel(RobotModel robot, const EnvironmentGe
   }
   if (report_.environment_pre_test != EnvironmentPreTest::kObjectBoxes) object_boxes_W_.clear();
   report_.environment_object_boxes = object_boxes_W_.size();
-  // 5a'. Box obstacles for the links' core boxes (conservative rounding): their parts inside
-  // the universe (a moved link voxel outside it is dropped), shrunk like the cores.
+  // 5a'. Solid boxes for the links' core boxes (conservative rounding): each primitive's
+  // inscribed box, its part inside the universe (a moved link voxel outside it is dropped),
+  // shrunk like the cores.
   if (options.core_boxes && options.rounding == Rounding::kConservative) {
     const double shrink = kSolidShrink * std::max(options.resolution, link_res);
     const Eigen::AlignedBox3d inner_universe_W(universe_W.min().array() + shrink,
                                                universe_W.max().array() - shrink);
     for (const EnvironmentGeometry::Item& item : environment.items()) {
       if (item.spec.kind != EnvironmentObject::Kind::kPrimitive) continue;
-      const Box* box = std::get_if<Box>(&item.spec.primitive);
-      if (!box) continue;
+      const Eigen::Vector3d half_O = inscribedBoxHalfSides(item.spec.primitive);
       const Eigen::Matrix3d& R_WO = item.spec.X_WO.linear();
-      const Eigen::Vector3d extent_W = R_WO.cwiseAbs() * box->half_extents;
+      const Eigen::Vector3d extent_W = R_WO.cwiseAbs() * half_O;
       const Eigen::AlignedBox3d aabb_W(item.spec.X_WO.translation() - extent_W,
                                        item.spec.X_WO.translation() + extent_W);
       SolidBox solid;
       if (inner_universe_W.contains(aabb_W)) {
         solid.centre_W = item.spec.X_WO.translation();
         solid.R_OW = R_WO.transpose();
-        solid.half = box->half_extents - Eigen::Vector3d::Constant(shrink);
+        solid.half = half_O - Eigen::Vector3d::Constant(shrink);
         solid.extent_W = extent_W;
       } else if ((R_WO.array() == 0 || R_WO.array().abs() == 1).all()) {
         // Exactly axis-aligned (a box crossing the universe's side, e.g. a floor beyond the
@@ -1050,7 +1063,7 @@ std::string CollisionModelReport::toString() const {
               ? "object boxes (" + std::to_string(environment_object_boxes) + ")"
               : std::string("environment box"))
       << "; certain contacts: links' core boxes against " << environment_solid_boxes
-      << " box obstacles\n";
+      << " primitives' inscribed boxes\n";
   out << "environment tested in the order (share of sampled states hitting):";
   for (const std::string& name : environment_order) {
     out << " " << name;

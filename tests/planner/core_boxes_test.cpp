@@ -1,7 +1,8 @@
-// Certain contacts (CollisionModelOptions::core_boxes): a link's core box overlapping a box
-// obstacle answers "in collision" without the tree query. The answers must be exactly those of
-// the same model without core boxes, on both checker paths, at several resolutions, with boards
-// thin and thick, axis-aligned and rotated, and walls reaching out of the universe.
+// Certain contacts (CollisionModelOptions::core_boxes): a link's core box overlapping the box
+// inscribed in a primitive obstacle answers "in collision" without the tree query. The answers
+// must be exactly those of the same model without core boxes, on both checker paths, at several
+// resolutions, with boards thin and thick, rods and balls, axis-aligned and rotated, and
+// objects reaching out of the universe.
 #include <gtest/gtest.h>
 
 #include <random>
@@ -51,45 +52,100 @@ std::vector<EnvironmentObject> boards(std::uint64_t seed, bool rotated) {
   return objects;
 }
 
+// Rods (12 mm bars like the cage's, thicker posts) and balls, upright or tilted, with an
+// upright pole leaving the universe (clipped to it) and a tilted one (left out): their
+// inscribed boxes are the solids.
+std::vector<EnvironmentObject> rodsAndBalls(std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::vector<EnvironmentObject> objects;
+  for (int i = 0; i < 14; ++i) {
+    EnvironmentObject o;
+    o.name = "solid" + std::to_string(i);
+    if (i % 5 == 4) {
+      o.primitive = Sphere{0.01 + 0.05 * std::abs(u(rng))};
+    } else {
+      o.primitive = Cylinder{i % 2 == 0 ? 0.012 : 0.012 + 0.04 * std::abs(u(rng)),
+                             0.1 + 0.5 * std::abs(u(rng))};
+    }
+    if (i % 3 != 0) {
+      o.X_WO.linear() = Eigen::Quaterniond(u(rng), u(rng), u(rng), u(rng)).normalized().matrix();
+    }
+    o.X_WO.translation() = 0.4 * Eigen::Vector3d(u(rng), u(rng), u(rng));
+    objects.push_back(o);
+  }
+  EnvironmentObject pole;
+  pole.name = "pole";
+  pole.primitive = Cylinder{0.02, 4.0};
+  pole.X_WO.translation() = Eigen::Vector3d(0.25, 0.1, 0);
+  objects.push_back(pole);
+  pole.name = "tilted_pole";
+  pole.X_WO = Eigen::AngleAxisd(0.4, Eigen::Vector3d::UnitX()) *
+              Eigen::Translation3d(Eigen::Vector3d(-0.2, 0.05, 0));
+  objects.push_back(pole);
+  return objects;
+}
+
+// The environment half of `with` answers as `without` (no core boxes) on every state, on both
+// checker paths; returns whether `with` has both solids and link cores (certain contacts can
+// fire).
+bool expectSameEnvironmentAnswers(const RobotModel& robot, const EnvironmentGeometry& env,
+                                  double res, std::size_t max_solids, const std::string& what) {
+  const auto states = test::uniformJointStates(robot, 1500, 9);
+  CollisionModelOptions o;
+  o.resolution = res;
+  o.link_resolution = res;  // the moveTree path materialises every link leaf
+  const OctreeCollisionModel with(robot, env, o);
+  o.core_boxes = false;
+  const OctreeCollisionModel without(robot, env, o);
+  EXPECT_EQ(without.report().environment_solid_boxes, 0u);
+  for (const LinkReport& l : without.report().links) EXPECT_EQ(l.core_boxes, 0);
+  const std::size_t solids = with.report().environment_solid_boxes;
+  EXPECT_LE(solids, max_solids) << what;  // never the tilted object leaving the universe
+  int cores = 0;
+  for (const LinkReport& l : with.report().links) cores += l.core_boxes;
+  for (const CheckerPath path : {CheckerPath::kFused, CheckerPath::kMoveTree}) {
+    if (path == CheckerPath::kMoveTree && res < 0.01) continue;  // slow, same code path
+    CheckScratch a = with.makeScratch(), b = without.makeScratch();
+    int hits = 0;
+    for (std::size_t i = 0; i < states.size(); ++i) {
+      const auto& q = states[i];
+      robot.forwardKinematics(q.data(), q.size(), a.robot);
+      robot.forwardKinematics(q.data(), q.size(), b.robot);
+      const bool expected = without.environmentInCollision(path, b);
+      EXPECT_EQ(with.environmentInCollision(path, a), expected)
+          << "state " << i << ", resolution " << res << ", " << what;
+      if (with.environmentInCollision(path, a) != expected) return false;
+      hits += expected;
+    }
+    EXPECT_GT(hits, 150) << what;  // both answers are exercised
+    EXPECT_LT(hits, 1350) << what;
+  }
+  return solids > 0 && cores > 0;
+}
+
 TEST(CoreBoxes, SameAnswersAsTheTreeQueries) {
   const RobotModel robot = snake(6, 1.6);
-  const auto states = test::uniformJointStates(robot, 1500, 9);
   int certain_models = 0;
   for (const bool rotated : {false, true}) {
     const EnvironmentGeometry env = EnvironmentGeometry::load(boards(rotated ? 5 : 6, rotated));
     for (const double res : {0.02, 0.01, 0.005}) {
-      CollisionModelOptions o;
-      o.resolution = res;
-      o.link_resolution = res;  // the moveTree path materialises every link leaf
-      const OctreeCollisionModel with(robot, env, o);
-      o.core_boxes = false;
-      const OctreeCollisionModel without(robot, env, o);
-      EXPECT_EQ(without.report().environment_solid_boxes, 0u);
-      for (const LinkReport& l : without.report().links) EXPECT_EQ(l.core_boxes, 0);
-      const std::size_t solids = with.report().environment_solid_boxes;
-      EXPECT_LE(solids, 13u);  // never the tilted wall
-      int cores = 0;
-      for (const LinkReport& l : with.report().links) cores += l.core_boxes;
-      certain_models += solids > 0 && cores > 0;
-      for (const CheckerPath path : {CheckerPath::kFused, CheckerPath::kMoveTree}) {
-        if (path == CheckerPath::kMoveTree && res < 0.01) continue;  // slow, same code path
-        CheckScratch a = with.makeScratch(), b = without.makeScratch();
-        int hits = 0;
-        for (std::size_t i = 0; i < states.size(); ++i) {
-          const auto& q = states[i];
-          robot.forwardKinematics(q.data(), q.size(), a.robot);
-          robot.forwardKinematics(q.data(), q.size(), b.robot);
-          const bool expected = without.environmentInCollision(path, b);
-          ASSERT_EQ(with.environmentInCollision(path, a), expected)
-              << "state " << i << ", resolution " << res << (rotated ? ", rotated" : "");
-          hits += expected;
-        }
-        EXPECT_GT(hits, 150);  // both answers are exercised
-        EXPECT_LT(hits, 1350);
-      }
+      certain_models +=
+          expectSameEnvironmentAnswers(robot, env, res, 13, rotated ? "rotated boards" : "boards");
     }
   }
   EXPECT_EQ(certain_models, 6);
+}
+
+TEST(CoreBoxes, RodsAndBallsGiveTheSameAnswers) {
+  const RobotModel robot = snake(6, 1.6);
+  const std::vector<EnvironmentObject> objects = rodsAndBalls(11);
+  const EnvironmentGeometry env = EnvironmentGeometry::load(objects);
+  int certain_models = 0;
+  for (const double res : {0.02, 0.01, 0.005}) {
+    certain_models += expectSameEnvironmentAnswers(robot, env, res, objects.size() - 1, "rods");
+  }
+  EXPECT_EQ(certain_models, 3);
 }
 
 TEST(CoreBoxes, OnlyUnderConservativeRounding) {

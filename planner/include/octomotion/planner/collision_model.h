@@ -204,7 +204,7 @@ struct CollisionModelReport {
   SelfBroadPhase self_broad_phase = SelfBroadPhase::kPairs;  // resolved (never kAuto)
   EnvironmentPreTest environment_pre_test = EnvironmentPreTest::kEnvironmentBox;  // resolved
   std::size_t environment_object_boxes = 0;  // object boxes the pre-test loops over
-  std::size_t environment_solid_boxes = 0;   // box obstacles the links' core boxes are tested on
+  std::size_t environment_solid_boxes = 0;   // inscribed boxes of primitives, for core boxes
   int environment_cell_grid_level = -1;      // BlackCellGrid of the environment (-1: none)
   std::size_t environment_cell_grid_bytes = 0;
   int environment_clearance_grid_level = -1;  // ClearanceGrid of the environment (-1: none)
@@ -294,7 +294,8 @@ class OctreeCollisionModel {
     };
     std::vector<CoreBox> core_boxes;
   };
-  // A box obstacle, shrunk by kSolidShrink: every voxel it overlaps is black in the environment.
+  // A box inside a primitive obstacle (the box itself, a ball's inscribed cube, a cylinder's
+  // square prism), shrunk by kSolidShrink: every voxel it overlaps is black in the environment.
   struct SolidBox {
     Eigen::Vector3d centre_W, half;
     Eigen::Matrix3d R_OW;      // world to the box's axes
@@ -304,7 +305,7 @@ class OctreeCollisionModel {
   // both then has a ball about it in both boxes, so the target voxel holding it overlaps the
   // obstacle and a moved link voxel by far more than the colour rules' ties (1e-6 voxel).
   static constexpr double kSolidShrink = 1e-3;
-  // One of the link's core boxes overlaps a solid box obstacle: the link's moved tree and the
+  // One of the link's core boxes overlaps a solid box: the link's moved tree and the
   // environment share a black voxel.
   bool certainContact(const LinkVoxels& v, const Eigen::Isometry3d& X_WL) const;
   struct LinkTree {
