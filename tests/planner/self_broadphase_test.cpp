@@ -140,45 +140,53 @@ TEST(SelfBroadPhase, ThreadsWithTheirOwnScratchAgree) {
 }
 
 // The environment pre-test over the objects' own boxes (EnvironmentPreTest::kObjectBoxes) only
-// skips links that cannot touch any object: same answers as the single environment box.
+// skips links that cannot touch any object: same answers as the single environment box — with
+// few objects (each box tested) and with many (only those in the link's slabs; 70 objects fill
+// two mask words), one of them a long pole reaching out of the universe.
 TEST(EnvironmentPreTest, ObjectBoxesMatchEnvironmentBox) {
-  std::mt19937_64 rng(21);
-  std::uniform_real_distribution<double> u(-1, 1);
-  std::vector<EnvironmentObject> objects;
-  for (int i = 0; i < 30; ++i) {
-    EnvironmentObject box;
-    box.name = "box" + std::to_string(i);
-    box.primitive =
-        Box{Eigen::Vector3d(0.01 + 0.03 * std::abs(u(rng)), 0.01 + 0.03 * std::abs(u(rng)), 0.02)};
-    box.X_WO.linear() = Eigen::Quaterniond(u(rng), u(rng), u(rng), u(rng)).normalized().matrix();
-    box.X_WO.translation() = 0.6 * Eigen::Vector3d(u(rng), u(rng), u(rng));
-    objects.push_back(box);
-  }
-  const EnvironmentGeometry env = EnvironmentGeometry::load(objects);
   const RobotModel robot = snake(7, 1.5);
-  CollisionModelOptions o;
-  o.resolution = 0.01;
-  o.link_resolution = 0.01;  // the moveTree path below materialises every link leaf
-  const OctreeCollisionModel automatic(robot, env, o);
-  EXPECT_EQ(automatic.report().environment_pre_test, EnvironmentPreTest::kObjectBoxes);
-  EXPECT_EQ(automatic.report().environment_object_boxes, objects.size());
-  o.environment_pre_test = EnvironmentPreTest::kEnvironmentBox;
-  const OctreeCollisionModel merged_box(robot, env, o);
-  EXPECT_EQ(merged_box.report().environment_pre_test, EnvironmentPreTest::kEnvironmentBox);
   const auto states = test::uniformJointStates(robot, 2000, 4);
-  for (const CheckerPath path : {CheckerPath::kFused, CheckerPath::kMoveTree}) {
-    CheckScratch a = automatic.makeScratch(), b = merged_box.makeScratch();
-    int hits = 0;
-    for (std::size_t i = 0; i < states.size(); ++i) {
-      const auto& q = states[i];
-      robot.forwardKinematics(q.data(), q.size(), a.robot);
-      robot.forwardKinematics(q.data(), q.size(), b.robot);
-      const bool expected = merged_box.environmentInCollision(path, b);
-      ASSERT_EQ(automatic.environmentInCollision(path, a), expected) << "state " << i;
-      hits += expected;
+  for (const int count : {12, 30, 70}) {
+    std::mt19937_64 rng(21);
+    std::uniform_real_distribution<double> u(-1, 1);
+    std::vector<EnvironmentObject> objects;
+    const double size = 0.01 + 0.2 / count;
+    for (int i = 0; i < count; ++i) {
+      EnvironmentObject box;
+      box.name = "box" + std::to_string(i);
+      box.primitive = Box{
+          Eigen::Vector3d(size + 0.03 * std::abs(u(rng)), size + 0.03 * std::abs(u(rng)), 0.02)};
+      box.X_WO.linear() = Eigen::Quaterniond(u(rng), u(rng), u(rng), u(rng)).normalized().matrix();
+      box.X_WO.translation() = 0.6 * Eigen::Vector3d(u(rng), u(rng), u(rng));
+      objects.push_back(box);
     }
-    EXPECT_GT(hits, 100);  // both answers are exercised
-    EXPECT_LT(hits, 1900);
+    objects.back().primitive = Cylinder{0.02, 5.0};
+    objects.back().X_WO = Eigen::Isometry3d(Eigen::Translation3d(0.3, -0.2, 0));
+    const EnvironmentGeometry env = EnvironmentGeometry::load(objects);
+    CollisionModelOptions o;
+    o.resolution = 0.01;
+    o.link_resolution = 0.01;  // the moveTree path below materialises every link leaf
+    const OctreeCollisionModel automatic(robot, env, o);
+    EXPECT_EQ(automatic.report().environment_pre_test, EnvironmentPreTest::kObjectBoxes);
+    EXPECT_EQ(automatic.report().environment_object_boxes, objects.size());
+    o.environment_pre_test = EnvironmentPreTest::kEnvironmentBox;
+    const OctreeCollisionModel merged_box(robot, env, o);
+    EXPECT_EQ(merged_box.report().environment_pre_test, EnvironmentPreTest::kEnvironmentBox);
+    for (const CheckerPath path : {CheckerPath::kFused, CheckerPath::kMoveTree}) {
+      CheckScratch a = automatic.makeScratch(), b = merged_box.makeScratch();
+      int hits = 0;
+      for (std::size_t i = 0; i < states.size(); ++i) {
+        const auto& q = states[i];
+        robot.forwardKinematics(q.data(), q.size(), a.robot);
+        robot.forwardKinematics(q.data(), q.size(), b.robot);
+        const bool expected = merged_box.environmentInCollision(path, b);
+        ASSERT_EQ(automatic.environmentInCollision(path, a), expected)
+            << "state " << i << ", " << count << " objects";
+        hits += expected;
+      }
+      EXPECT_GT(hits, 100) << count << " objects";  // both answers are exercised
+      EXPECT_LT(hits, 1900) << count << " objects";
+    }
   }
 }
 
