@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "environment_answers.h"
 #include "joint_states.h"
 #include "octomotion/planner/collision_model.h"
 #include "snake_robot.h"
@@ -106,20 +107,11 @@ bool expectSameEnvironmentAnswers(const RobotModel& robot, const EnvironmentGeom
   for (const LinkReport& l : with.report().links) cores += l.core_boxes;
   for (const CheckerPath path : {CheckerPath::kFused, CheckerPath::kMoveTree}) {
     if (path == CheckerPath::kMoveTree && res < 0.01) continue;  // slow, same code path
-    CheckScratch a = with.makeScratch(), b = without.makeScratch();
-    int hits = 0;
-    for (std::size_t i = 0; i < states.size(); ++i) {
-      const auto& q = states[i];
-      robot.forwardKinematics(q.data(), q.size(), a.robot);
-      robot.forwardKinematics(q.data(), q.size(), b.robot);
-      const bool expected = without.environmentInCollision(path, b);
-      EXPECT_EQ(with.environmentInCollision(path, a), expected)
-          << "state " << i << ", resolution " << res << ", " << what;
-      if (with.environmentInCollision(path, a) != expected) return false;
-      hits += expected;
-    }
-    EXPECT_GT(hits, 150) << what;  // both answers are exercised
-    EXPECT_LT(hits, 1350) << what;
+    const std::string where = what + ", resolution " + std::to_string(res);
+    const int hits = test::environmentHitsIfSame(with, without, states, path, where);
+    if (hits < 0) return false;
+    EXPECT_GT(hits, 150) << where;  // both answers are exercised
+    EXPECT_LT(hits, 1350) << where;
   }
   return solids > 0 && cores > 0;
 }
