@@ -52,6 +52,16 @@ double squaredDistanceToBox(const Eigen::Vector3d& p, const Eigen::AlignedBox3d&
   return (p - p.cwiseMax(box.min()).cwiseMin(box.max())).squaredNorm();
 }
 
+// The half sides of the primitive's own box (centred on its frame, along its axes).
+Eigen::Vector3d primitiveHalfSides(const Primitive& shape) {
+  if (const Box* box = std::get_if<Box>(&shape)) return box->half_extents;
+  if (const Sphere* ball = std::get_if<Sphere>(&shape)) {
+    return Eigen::Vector3d::Constant(ball->radius);
+  }
+  const Cylinder& rod = std::get<Cylinder>(shape);
+  return Eigen::Vector3d(rod.radius, rod.radius, rod.length / 2);
+}
+
 // The half sides of a box inside the primitive, centred on its frame and along its axes:
 // the box itself; for a ball, the inscribed cube; for a cylinder, its full length over the
 // square inscribed in its disc (the largest cross-section a box can have there).
@@ -439,7 +449,20 @@ OctreeCollisionModel::OctreeCollisionModel(RobotModel robot, const EnvironmentGe
   for (const EnvironmentGeometry::Item& item : environment.items()) {
     if (item.bounds_W.isEmpty()) continue;
     const Eigen::AlignedBox3d box(item.bounds_W.min() - one_voxel, item.bounds_W.max() + one_voxel);
-    if (!box.intersection(universe_W).isEmpty()) object_boxes_W_.push_back(box);
+    if (box.intersection(universe_W).isEmpty()) continue;
+    object_boxes_W_.push_back(box);
+    ObjectFrameBox frame_box;
+    const Eigen::Matrix3d& R_WO = item.spec.X_WO.linear();
+    if (item.spec.kind == EnvironmentObject::Kind::kPrimitive &&
+        !std::holds_alternative<Sphere>(item.spec.primitive) &&
+        !(R_WO.array() == 0 || R_WO.array().abs() == 1).all()) {
+      frame_box.tilted = true;
+      frame_box.centre_W = item.spec.X_WO.translation();
+      frame_box.R_WO = R_WO;
+      frame_box.half = primitiveHalfSides(item.spec.primitive) +
+                       Eigen::Vector3d::Constant(std::sqrt(3.0) * grid.voxelSize());
+    }
+    object_frame_boxes_.push_back(frame_box);
   }
   switch (options.environment_pre_test) {
     case EnvironmentPreTest::kAuto:
@@ -451,7 +474,10 @@ OctreeCollisionModel::OctreeCollisionModel(RobotModel robot, const EnvironmentGe
     default:
       report_.environment_pre_test = options.environment_pre_test;
   }
-  if (report_.environment_pre_test != EnvironmentPreTest::kObjectBoxes) object_boxes_W_.clear();
+  if (report_.environment_pre_test != EnvironmentPreTest::kObjectBoxes) {
+    object_boxes_W_.clear();
+    object_frame_boxes_.clear();
+  }
   report_.environment_object_boxes = object_boxes_W_.size();
   // 5a'. Solid boxes for the links' core boxes (conservative rounding): each primitive's
   // inscribed box, its part inside the universe (a moved link voxel outside it is dropped),
@@ -763,7 +789,13 @@ bool OctreeCollisionModel::linkNearEnvironment(const EnvironmentLinkTest& t,
     const Eigen::AlignedBox3d& box = object_boxes_W_[i];
     if (squaredDistanceToBox(c_W, box) <= t.reach_squared &&
         boxesOverlap(box.center(), box.sizes() / 2, R_WL, c_W, t.half_L, margin)) {
-      return true;
+      const ObjectFrameBox& o = object_frame_boxes_[i];
+      if (!o.tilted) return true;
+      const Eigen::Matrix3d R_OW = o.R_WO.transpose();
+      if (boxesOverlap(Eigen::Vector3d::Zero(), o.half, R_OW * R_WL, R_OW * (c_W - o.centre_W),
+                       t.half_L, margin)) {
+        return true;
+      }
     }
   }
   return false;

@@ -393,6 +393,15 @@ class OctreeCollisionModel {
   // The same boxes for the pre-test's first three axes, one array per axis (centre, and half
   // side plus the tie margin), precomputed: most boxes are rejected there.
   std::array<std::vector<double>, 3> object_centre_W_, object_reach_W_;
+  // A rotated primitive's own box, grown by a voxel diagonal (it holds the object's black
+  // voxels too, and is much tighter than the world box for a tilted bar): tested after the
+  // world box. Parallel to object_boxes_W_; `tilted` false for the others.
+  struct ObjectFrameBox {
+    Eigen::Vector3d centre_W = Eigen::Vector3d::Zero(), half = Eigen::Vector3d::Zero();
+    Eigen::Matrix3d R_WO = Eigen::Matrix3d::Identity();
+    bool tilted = false;
+  };
+  std::vector<ObjectFrameBox> object_frame_boxes_;
   std::vector<SolidBox> solid_boxes_W_;
   std::vector<LinkTree> links_;  // modelled links only
   // The links that can touch the environment, in the order environmentInCollision tests them:
