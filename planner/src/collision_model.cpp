@@ -52,6 +52,12 @@ double squaredDistanceToBox(const Eigen::Vector3d& p, const Eigen::AlignedBox3d&
   return (p - p.cwiseMax(box.min()).cwiseMin(box.max())).squaredNorm();
 }
 
+// Every entry 0 or ±1: the rotation only permutes and flips the axes, so boxes along them are
+// exactly axis-aligned in the world.
+bool isAxisPermutation(const Eigen::Matrix3d& R) {
+  return (R.array() == 0 || R.array().abs() == 1).all();
+}
+
 // The half sides of the primitive's own box (centred on its frame, along its axes).
 Eigen::Vector3d primitiveHalfSides(const Primitive& shape) {
   if (const Box* box = std::get_if<Box>(&shape)) return box->half_extents;
@@ -454,8 +460,7 @@ OctreeCollisionModel::OctreeCollisionModel(RobotModel robot, const EnvironmentGe
     ObjectFrameBox frame_box;
     const Eigen::Matrix3d& R_WO = item.spec.X_WO.linear();
     if (item.spec.kind == EnvironmentObject::Kind::kPrimitive &&
-        !std::holds_alternative<Sphere>(item.spec.primitive) &&
-        !(R_WO.array() == 0 || R_WO.array().abs() == 1).all()) {
+        !std::holds_alternative<Sphere>(item.spec.primitive) && !isAxisPermutation(R_WO)) {
       frame_box.tilted = true;
       frame_box.centre_W = item.spec.X_WO.translation();
       frame_box.R_WO = R_WO;
@@ -499,7 +504,7 @@ OctreeCollisionModel::OctreeCollisionModel(RobotModel robot, const EnvironmentGe
         solid.R_OW = R_WO.transpose();
         solid.half = half_O - Eigen::Vector3d::Constant(shrink);
         solid.extent_W = extent_W;
-      } else if ((R_WO.array() == 0 || R_WO.array().abs() == 1).all()) {
+      } else if (isAxisPermutation(R_WO)) {
         // Exactly axis-aligned (a box crossing the universe's side, e.g. a floor beyond the
         // robot's reach): the part inside the universe, which is its own world box.
         const Eigen::AlignedBox3d inside = aabb_W.intersection(inner_universe_W);
