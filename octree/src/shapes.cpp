@@ -42,21 +42,33 @@ bool containsPoint(const Primitive& shape, const Eigen::Vector3d& p_S) {
          p_S.x() * p_S.x() + p_S.y() * p_S.y() <= cylinder.radius * cylinder.radius;
 }
 
+Eigen::Vector3d boxHalfSides(const Primitive& shape) {
+  if (const auto* box = std::get_if<Box>(&shape)) return box->half_extents;
+  if (const auto* ball = std::get_if<Sphere>(&shape)) {
+    return Eigen::Vector3d::Constant(ball->radius);
+  }
+  const auto& rod = std::get<Cylinder>(shape);
+  return Eigen::Vector3d(rod.radius, rod.radius, rod.length / 2);
+}
+
+Eigen::Vector3d inscribedBoxHalfSides(const Primitive& shape) {
+  if (const auto* box = std::get_if<Box>(&shape)) return box->half_extents;
+  if (const auto* ball = std::get_if<Sphere>(&shape)) {
+    return Eigen::Vector3d::Constant(ball->radius / std::sqrt(3.0));
+  }
+  const auto& rod = std::get<Cylinder>(shape);
+  const double side = rod.radius / std::sqrt(2.0);
+  return Eigen::Vector3d(side, side, rod.length / 2);
+}
+
 Eigen::AlignedBox3d boundingBox(const Primitive& shape, const Eigen::Isometry3d& X_WS) {
   if (const auto* ball = std::get_if<Sphere>(&shape)) {
     // A ball's box does not depend on the rotation.
     const Eigen::Vector3d c = X_WS.translation();
     return Eigen::AlignedBox3d(c.array() - ball->radius, c.array() + ball->radius);
   }
-  Eigen::Vector3d half;
-  if (const auto* b = std::get_if<Box>(&shape)) {
-    half = b->half_extents;
-  } else {
-    const auto& c = std::get<Cylinder>(shape);
-    half = Eigen::Vector3d(c.radius, c.radius, c.length / 2);
-  }
   // |R| h is the half-size of the rotated box's box.
-  const Eigen::Vector3d world_half = X_WS.linear().cwiseAbs() * half;
+  const Eigen::Vector3d world_half = X_WS.linear().cwiseAbs() * boxHalfSides(shape);
   return Eigen::AlignedBox3d(X_WS.translation() - world_half, X_WS.translation() + world_half);
 }
 

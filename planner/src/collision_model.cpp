@@ -20,6 +20,7 @@
 #include "octomotion/octree/inner_boxes.h"
 #include "octomotion/octree/mesh.h"
 #include "octomotion/octree/set_ops.h"
+#include "octomotion/octree/shapes.h"
 #include "octomotion/octree/traversal.h"
 #include "octomotion/octree/voxelize.h"
 #include "self_pair_tables.h"
@@ -56,29 +57,6 @@ double squaredDistanceToBox(const Eigen::Vector3d& p, const Eigen::AlignedBox3d&
 // exactly axis-aligned in the world.
 bool isAxisPermutation(const Eigen::Matrix3d& R) {
   return (R.array() == 0 || R.array().abs() == 1).all();
-}
-
-// The half sides of the primitive's own box (centred on its frame, along its axes).
-Eigen::Vector3d primitiveHalfSides(const Primitive& shape) {
-  if (const Box* box = std::get_if<Box>(&shape)) return box->half_extents;
-  if (const Sphere* ball = std::get_if<Sphere>(&shape)) {
-    return Eigen::Vector3d::Constant(ball->radius);
-  }
-  const Cylinder& rod = std::get<Cylinder>(shape);
-  return Eigen::Vector3d(rod.radius, rod.radius, rod.length / 2);
-}
-
-// The half sides of a box inside the primitive, centred on its frame and along its axes:
-// the box itself; for a ball, the inscribed cube; for a cylinder, its full length over the
-// square inscribed in its disc (the largest cross-section a box can have there).
-Eigen::Vector3d inscribedBoxHalfSides(const Primitive& shape) {
-  if (const Box* box = std::get_if<Box>(&shape)) return box->half_extents;
-  if (const Sphere* ball = std::get_if<Sphere>(&shape)) {
-    return Eigen::Vector3d::Constant(ball->radius / std::sqrt(3.0));
-  }
-  const Cylinder& rod = std::get<Cylinder>(shape);
-  const double side = rod.radius / std::sqrt(2.0);
-  return Eigen::Vector3d(side, side, rod.length / 2);
 }
 
 double distanceToBox(const Eigen::Vector3d& p, const Eigen::AlignedBox3d& box) {
@@ -463,8 +441,8 @@ OctreeCollisionModel::OctreeCollisionModel(RobotModel robot, const EnvironmentGe
         !std::holds_alternative<Sphere>(item.spec.primitive) && !isAxisPermutation(R_WO)) {
       frame_box.tilted = true;
       frame_box.centre_W = item.spec.X_WO.translation();
-      frame_box.R_WO = R_WO;
-      frame_box.half = primitiveHalfSides(item.spec.primitive) +
+      frame_box.R_OW = R_WO.transpose();
+      frame_box.half = boxHalfSides(item.spec.primitive) +
                        Eigen::Vector3d::Constant(std::sqrt(3.0) * grid.voxelSize());
     }
     object_frame_boxes_.push_back(frame_box);
@@ -796,8 +774,7 @@ bool OctreeCollisionModel::linkNearEnvironment(const EnvironmentLinkTest& t,
         boxesOverlap(box.center(), box.sizes() / 2, R_WL, c_W, t.half_L, margin)) {
       const ObjectFrameBox& o = object_frame_boxes_[i];
       if (!o.tilted) return true;
-      const Eigen::Matrix3d R_OW = o.R_WO.transpose();
-      if (boxesOverlap(Eigen::Vector3d::Zero(), o.half, R_OW * R_WL, R_OW * (c_W - o.centre_W),
+      if (boxesOverlap(Eigen::Vector3d::Zero(), o.half, o.R_OW * R_WL, o.R_OW * (c_W - o.centre_W),
                        t.half_L, margin)) {
         return true;
       }

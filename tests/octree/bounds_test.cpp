@@ -1,4 +1,5 @@
-// boundingBox of a placed primitive contains the shape and is tight; centerOnVertexMean centres.
+// boundingBox of a placed primitive contains the shape and is tight, the inscribed box lies
+// inside it; centerOnVertexMean centres.
 #include <gtest/gtest.h>
 
 #include <random>
@@ -49,6 +50,30 @@ TEST(Bounds, PrimitiveBoxContainsTheShapeAndIsTight) {
       EXPECT_LT((reached_min - box.min()).maxCoeff(), 0.1);
       EXPECT_LT((box.max() - reached_max).maxCoeff(), 0.1);
     }
+  }
+}
+
+// The inscribed box (certain contacts' solid boxes) lies inside the shape, and is the largest
+// of its form: grown by 1 % some corner leaves the shape. The shape's own box is the bounding
+// box of the shape at its own frame.
+TEST(Bounds, InscribedBoxIsInsideTheShapeAndTight) {
+  const Primitive shapes[] = {Box{Eigen::Vector3d(0.3, 0.1, 0.2)}, Sphere{0.25}, Cylinder{0.1, 0.5},
+                              Cylinder{0.012, 1.3}};
+  for (const Primitive& shape : shapes) {
+    const Eigen::Vector3d inner = inscribedBoxHalfSides(shape);
+    const Eigen::Vector3d outer = boxHalfSides(shape);
+    const Eigen::AlignedBox3d box = boundingBox(shape, Eigen::Isometry3d::Identity());
+    EXPECT_TRUE(box.max().isApprox(outer, 1e-15));
+    EXPECT_TRUE(box.min().isApprox(-outer, 1e-15));
+    bool grown_leaves = false;
+    for (int i = 0; i < 8; ++i) {
+      const Eigen::Vector3d sign((i & 1) ? 1 : -1, (i & 2) ? 1 : -1, (i & 4) ? 1 : -1);
+      const Eigen::Vector3d corner = sign.cwiseProduct(inner);
+      EXPECT_TRUE(containsPoint(shape, corner * (1 - 1e-12))) << "corner " << i;
+      grown_leaves = grown_leaves || !containsPoint(shape, corner * 1.01);
+    }
+    EXPECT_TRUE(grown_leaves);
+    EXPECT_TRUE((inner.array() <= outer.array()).all());
   }
 }
 

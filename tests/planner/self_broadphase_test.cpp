@@ -141,9 +141,9 @@ TEST(SelfBroadPhase, ThreadsWithTheirOwnScratchAgree) {
 }
 
 // The environment pre-test over the objects' own boxes (EnvironmentPreTest::kObjectBoxes) only
-// skips links that cannot touch any object: same answers as the single environment box — with
-// few objects (each box tested) and with many (only those in the link's slabs; 70 objects fill
-// two mask words), one of them a long pole reaching out of the universe.
+// skips links that cannot touch any object: same answers as the single environment box, with
+// 12 to 70 rotated boxes (also tested in their own frames) and an upright pole reaching out of
+// the universe.
 TEST(EnvironmentPreTest, ObjectBoxesMatchEnvironmentBox) {
   const RobotModel robot = snake(7, 1.5);
   const auto states = test::uniformJointStates(robot, 2000, 4);

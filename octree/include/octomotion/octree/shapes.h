@@ -31,6 +31,15 @@ using Primitive = std::variant<Box, Sphere, Cylinder>;
 // negative, NaN or infinite.
 void validate(const Primitive& shape);
 
+// Half sides of the shape's own box, centred on its frame and along its axes: the box
+// itself, a ball's cube, a cylinder's square prism.
+Eigen::Vector3d boxHalfSides(const Primitive& shape);
+
+// Half sides of a box inside the shape, centred on its frame and along its axes: the box
+// itself, a ball's inscribed cube, a cylinder's full length over the square inscribed in its
+// disc (the largest cross-section a box can have there).
+Eigen::Vector3d inscribedBoxHalfSides(const Primitive& shape);
+
 // World-frame axis-aligned box of the shape placed at X_WS (exact for boxes and balls; for a
 // cylinder, the box of its bounding box).
 Eigen::AlignedBox3d boundingBox(const Primitive& shape, const Eigen::Isometry3d& X_WS);

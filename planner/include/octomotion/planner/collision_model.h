@@ -398,7 +398,7 @@ class OctreeCollisionModel {
   // world box. Parallel to object_boxes_W_; `tilted` false for the others.
   struct ObjectFrameBox {
     Eigen::Vector3d centre_W = Eigen::Vector3d::Zero(), half = Eigen::Vector3d::Zero();
-    Eigen::Matrix3d R_WO = Eigen::Matrix3d::Identity();
+    Eigen::Matrix3d R_OW = Eigen::Matrix3d::Identity();  // world to the object's axes
     bool tilted = false;
   };
   std::vector<ObjectFrameBox> object_frame_boxes_;
