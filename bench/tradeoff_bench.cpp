@@ -39,6 +39,8 @@ const char* kUsage = R"(usage: tradeoff_bench [options]
   --self-link-ratio R     self-collision link trees at R x each resolution (default: --link-ratio
                           if given, else 1, the library's defaults)
   --self-pair-tables on|off  joint-space tables for self pairs (default: the scene's setting)
+  --exact-primitives on|off  contacts confirmed against primitives' exact shapes (default: the
+                           scene's setting)
 )";
 
 double number(const std::string& flag, const std::string& v) {
@@ -104,6 +106,10 @@ int run(int argc, char** argv) {
       const std::string v = value();
       if (v != "on" && v != "off") throw InvalidArgument("--self-pair-tables: expected on or off");
       base.overrides.self_pair_tables = v == "on";
+    } else if (arg == "--exact-primitives") {
+      const std::string v = value();
+      if (v != "on" && v != "off") throw InvalidArgument("--exact-primitives: expected on or off");
+      base.overrides.exact_primitives = v == "on";
     } else if (arg == "--no-fcl-octomap") {
       base.fcl_octomap = false;
     } else if (arg == "-h" || arg == "--help") {

@@ -58,6 +58,10 @@ bool parseSceneOption(const std::string& arg, const std::function<std::string()>
     const std::string v = value();
     if (v != "on" && v != "off") throw InvalidArgument("--self-pair-tables: expected on or off");
     overrides.self_pair_tables = v == "on";
+  } else if (arg == "--exact-primitives") {
+    const std::string v = value();
+    if (v != "on" && v != "off") throw InvalidArgument("--exact-primitives: expected on or off");
+    overrides.exact_primitives = v == "on";
   } else if (arg == "--package-path") {
     overrides.package_paths.push_back(value());
   } else {

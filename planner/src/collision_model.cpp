@@ -421,19 +421,51 @@ OctreeCollisionModel::OctreeCollisionModel(RobotModel robot, const EnvironmentGe
   environment_clearance_ = std::make_unique<const ClearanceGrid>(environment_);
   report_.environment_clearance_grid_level = environment_clearance_->level();
   report_.environment_clearance_grid_bytes = environment_clearance_->bytes();
-  if (const auto b = environment_.bounds()) {
+  // 5'. Exact primitives: when every object is a primitive, the environment half tests the
+  // links' black source voxels against the primitives themselves (linkHitsEnvironment) instead
+  // of the environment tree; a mesh or a point cloud has no such shape to test against.
+  const bool all_primitives =
+      !environment.items().empty() &&
+      std::all_of(environment.items().begin(), environment.items().end(),
+                  [](const EnvironmentGeometry::Item& item) {
+                    return item.spec.kind == EnvironmentObject::Kind::kPrimitive;
+                  });
+  if (options.exact_primitives &&
+      (options.rounding != Rounding::kConservative || !all_primitives)) {
+    warn(options.warnings,
+         options.rounding != Rounding::kConservative
+             ? "octree.exact_primitives: not applied under centre rounding"
+             : "octree.exact_primitives: not applied, the environment has objects that are not "
+               "primitives (meshes, point clouds or OctoMaps); the voxel answers stand");
+  }
+  const bool exact =
+      options.exact_primitives && options.rounding == Rounding::kConservative && all_primitives;
+  if (exact) {
+    for (const EnvironmentGeometry::Item& item : environment.items()) {
+      const Eigen::Vector3d extent_W =
+          item.spec.X_WO.linear().cwiseAbs() * boxHalfSides(item.spec.primitive);
+      exact_primitives_.push_back({PrimitiveShape(item.spec.primitive), item.spec.X_WO.inverse(),
+                                   item.spec.X_WO.translation(), extent_W});
+      environment_box_W_.extend(item.bounds_W);
+    }
+  } else if (const auto b = environment_.bounds()) {
     environment_box_W_ =
         Eigen::AlignedBox3d(grid.cubeMin(Cube{0, b->min}), grid.cubeMax(Cube{0, b->max}));
   }
+  report_.exact_primitives = exact_primitives_.size();
 
   // 5a. Object boxes for the environment pre-test: every voxel an object marks (any rounding,
-  // any kind) overlaps the object's box, so it lies within one voxel of it.
-  const Eigen::Vector3d one_voxel = Eigen::Vector3d::Constant(grid.voxelSize() * (1 + 1e-9));
+  // any kind) overlaps the object's box, so it lies within one voxel of it. With exact
+  // primitives a link leaf's bounding sphere that meets the object reaches past the link's box
+  // by less than a link voxel: the boxes grow by the larger of the two voxels and keep the
+  // parts outside the universe.
+  const double growth = exact ? std::max(grid.voxelSize(), link_res) : grid.voxelSize();
+  const Eigen::Vector3d one_voxel = Eigen::Vector3d::Constant(growth * (1 + 1e-9));
   const Eigen::AlignedBox3d universe_W(grid.origin(), grid.origin().array() + grid.sideMetres());
   for (const EnvironmentGeometry::Item& item : environment.items()) {
     if (item.bounds_W.isEmpty()) continue;
     const Eigen::AlignedBox3d box(item.bounds_W.min() - one_voxel, item.bounds_W.max() + one_voxel);
-    if (box.intersection(universe_W).isEmpty()) continue;
+    if (!exact && box.intersection(universe_W).isEmpty()) continue;
     object_boxes_W_.push_back(box);
     ObjectFrameBox frame_box;
     const Eigen::Matrix3d& R_WO = item.spec.X_WO.linear();
@@ -442,8 +474,8 @@ OctreeCollisionModel::OctreeCollisionModel(RobotModel robot, const EnvironmentGe
       frame_box.tilted = true;
       frame_box.centre_W = item.spec.X_WO.translation();
       frame_box.R_OW = R_WO.transpose();
-      frame_box.half = boxHalfSides(item.spec.primitive) +
-                       Eigen::Vector3d::Constant(std::sqrt(3.0) * grid.voxelSize());
+      frame_box.half =
+          boxHalfSides(item.spec.primitive) + Eigen::Vector3d::Constant(std::sqrt(3.0) * growth);
     }
     object_frame_boxes_.push_back(frame_box);
   }
@@ -720,8 +752,12 @@ OctreeCollisionModel::EnvironmentLinkTest OctreeCollisionModel::environmentTest(
   t.center_L = v.center_L;
   t.half_L = v.half_L;
   // Placed on the environment grid, the link's voxels reach up to one voxel diagonal beyond its
-  // bounding sphere (a target voxel is black when it overlaps a moved source voxel).
-  const double reach = v.radius + std::sqrt(3.0) * environment_.grid().voxelSize();
+  // bounding sphere (a target voxel is black when it overlaps a moved source voxel); with exact
+  // primitives a leaf's bounding sphere reaches less than a link voxel diagonal beyond it.
+  const double voxel = exact_primitives_.empty()
+                           ? environment_.grid().voxelSize()
+                           : std::max(environment_.grid().voxelSize(), v.source.grid().voxelSize());
+  const double reach = v.radius + std::sqrt(3.0) * voxel;
   t.reach_squared = reach * reach;
   const double origin_reach = (reach + v.center_L.norm()) * (1 + 1e-12);
   t.origin_reach_squared = origin_reach * origin_reach;
@@ -801,12 +837,28 @@ bool OctreeCollisionModel::certainContact(const LinkVoxels& v,
   return false;
 }
 
+bool OctreeCollisionModel::leavesMeetPrimitives(const LinkVoxels& v,
+                                                const Eigen::Isometry3d& X_WL) const {
+  const Eigen::Vector3d c_W = X_WL * v.center_L;
+  const Eigen::Vector3d h_W =
+      X_WL.linear().cwiseAbs() * v.half_L +
+      Eigen::Vector3d::Constant(kExactReachVoxels * v.source.grid().voxelSize());
+  for (const ExactPrimitive& p : exact_primitives_) {
+    if (((c_W - p.centre_W).cwiseAbs() - p.extent_W - h_W).maxCoeff() > 0) continue;
+    if (blackLeafMeetsPrimitive(*v.movable, p.X_PW * X_WL, p.shape)) return true;
+  }
+  return false;
+}
+
 bool OctreeCollisionModel::linkHitsEnvironment(const EnvironmentLinkTest& t,
                                                const Eigen::Isometry3d& X_WL, CheckerPath path,
                                                CollisionScratch& fused) const {
   if (!linkNearEnvironment(t, X_WL)) return false;
   const LinkVoxels& v = links_[t.slot].voxels;
+  // A certain contact has a point inside a primitive and inside a black link leaf: the exact
+  // primitives' answer too.
   if (certainContact(v, X_WL)) return true;
+  if (!exact_primitives_.empty()) return leavesMeetPrimitives(v, X_WL);
   if (path == CheckerPath::kFused) {
     return collides(*v.movable, X_WL, environment_, options_.rounding, fused, nullptr,
                     environment_cells_.get(), environment_clearance_.get());
@@ -1078,6 +1130,10 @@ std::string CollisionModelReport::toString() const {
               : std::string("environment box"))
       << "; certain contacts: links' core boxes against " << environment_solid_boxes
       << " primitives' inscribed boxes\n";
+  if (exact_primitives > 0) {
+    out << "exact primitives: the links' source voxels tested against " << exact_primitives
+        << " primitives' exact shapes (not the environment tree)\n";
+  }
   out << "environment tested in the order (share of sampled states hitting):";
   for (const std::string& name : environment_order) {
     out << " " << name;

@@ -134,6 +134,7 @@ PlanningScene loadPlanningScene(const std::string& scene_path, const SceneOverri
     spec.octree.self_link_resolution = *overrides.self_link_resolution;
   }
   if (overrides.self_pair_tables) spec.octree.self_pair_tables = *overrides.self_pair_tables;
+  if (overrides.exact_primitives) spec.octree.exact_primitives = *overrides.exact_primitives;
   // Seed before OMPL creates any random number generator.
   if (spec.problem.seed) ompl::RNG::setSeed(*spec.problem.seed);
 
@@ -202,6 +203,7 @@ PlanningScene loadPlanningScene(const std::string& scene_path, const SceneOverri
   }
   options.self_link_resolution = spec.octree.self_link_resolution;
   options.self_pair_tables = spec.octree.self_pair_tables;
+  options.exact_primitives = spec.octree.exact_primitives;
   options.rounding = spec.octree.rounding;
   if (spec.octree.max_surface_voxels) options.max_surface_voxels = *spec.octree.max_surface_voxels;
   options.base_position_bounds = spec.problem.bounds;

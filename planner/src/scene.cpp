@@ -247,7 +247,7 @@ void parseEnvironment(const YamlReader& r, const YAML::Node& node, SceneSpec& sc
 void parseOctree(const YamlReader& r, const YAML::Node& node, SceneSpec& scene) {
   r.allowOnly(node, "octree",
               {"resolution", "link_resolution", "self_link_resolution", "self_pair_tables",
-               "rounding", "checker", "max_surface_voxels"});
+               "exact_primitives", "rounding", "checker", "max_surface_voxels"});
   OctreeSettings& s = scene.octree;
   if (const YAML::Node res = node["resolution"]) {
     if (!(res.IsScalar() && res.Scalar() == "auto")) {
@@ -267,6 +267,13 @@ void parseOctree(const YamlReader& r, const YAML::Node& node, SceneSpec& scene) 
       r.fail("octree.self_pair_tables", node["self_pair_tables"], "expected true or false");
     }
     s.self_pair_tables = v == "true";
+  }
+  if (node["exact_primitives"]) {
+    const std::string v = r.string(node["exact_primitives"], "octree.exact_primitives");
+    if (v != "true" && v != "false") {
+      r.fail("octree.exact_primitives", node["exact_primitives"], "expected true or false");
+    }
+    s.exact_primitives = v == "true";
   }
   if (node["max_surface_voxels"]) {
     s.max_surface_voxels = r.positive(node["max_surface_voxels"], "octree.max_surface_voxels");

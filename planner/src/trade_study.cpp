@@ -57,6 +57,9 @@ StudyScene loadStudyScene(const TradeStudyOptions& options, const WarningSink& w
   if (options.overrides.self_pair_tables) {
     spec.octree.self_pair_tables = *options.overrides.self_pair_tables;
   }
+  if (options.overrides.exact_primitives) {
+    spec.octree.exact_primitives = *options.overrides.exact_primitives;
+  }
   if (options.overrides.max_surface_voxels) {
     spec.octree.max_surface_voxels = *options.overrides.max_surface_voxels;
   }
@@ -544,6 +547,7 @@ TradeStudyResult runTradeStudy(const TradeStudyOptions& options) {
   result.link_resolution_ratio = ratios.link;
   result.self_link_resolution_ratio = ratios.self;
   result.self_pair_tables = spec.octree.self_pair_tables;
+  result.exact_primitives = spec.octree.exact_primitives;
   std::vector<double> resolutions = options.resolutions.empty()
                                         ? defaultResolutions(free_flying, scene.resolution)
                                         : options.resolutions;
@@ -645,6 +649,7 @@ TradeStudyResult runTradeStudy(const TradeStudyOptions& options) {
       mo.self_link_resolution = resolution * result.self_link_resolution_ratio;
       mo.rounding = rounding;
       mo.self_pair_tables = spec.octree.self_pair_tables;
+      mo.exact_primitives = spec.octree.exact_primitives && rounding == Rounding::kConservative;
       if (spec.octree.max_surface_voxels) mo.max_surface_voxels = *spec.octree.max_surface_voxels;
       mo.base_position_bounds = scene.bounds;
       mo.keep_mesh_root_transform = spec.robot.keep_mesh_root_transform;
@@ -797,6 +802,9 @@ void writeMarkdown(const TradeStudyResult& result, std::ostream& out) {
   }
   if (result.self_pair_tables) {
     out << " Self-pair tables on (conservative settings; docs/planner.md, \"Self-pair tables\").";
+  }
+  if (result.exact_primitives) {
+    out << " Exact primitives on (conservative settings; docs/planner.md, \"Exact primitives\").";
   }
   out << "\n\n";
   out << "| checker | resolution | rounding | mean | free median | free p90 | colliding median "

@@ -97,6 +97,19 @@ TEST(Cli, InfoDescribesWhatIsModelled) {
       run("info " + scene("bookshelf.yaml") + " --resolution 0.02 --checker octree");
   ASSERT_EQ(move_tree.status, 0) << move_tree.err;
   EXPECT_THAT(move_tree.out, HasSubstr("links (source voxels 0.02 m):"));
+  // Exact primitives: off by default; on, the links are tested against the bookshelf's 8 boxes.
+  EXPECT_THAT(r.out, Not(HasSubstr("exact primitives")));
+  const CliRun exact =
+      run("info " + scene("bookshelf.yaml") + " --resolution 0.02 --exact-primitives on");
+  ASSERT_EQ(exact.status, 0) << exact.err;
+  EXPECT_THAT(exact.out,
+              HasSubstr("exact primitives: the links' source voxels tested against 8 primitives"));
+  // A point-cloud scene cannot use them: said on stderr, and the voxel answers stand.
+  const CliRun cloud =
+      run("info " + scene("scan_table.yaml") + " --resolution 0.02 --exact-primitives on");
+  ASSERT_EQ(cloud.status, 0) << cloud.err;
+  EXPECT_THAT(cloud.err, HasSubstr("octree.exact_primitives: not applied"));
+  EXPECT_THAT(cloud.out, Not(HasSubstr("exact primitives")));
 }
 
 // Options that name one setting are the study's own lists (--resolutions, --self-link-ratio ...):
@@ -172,6 +185,7 @@ TEST(Cli, BadInputIsOneLineAndNonZero) {
         "info " + scene("bookshelf.yaml") + " --resolution -1",
         "info " + scene("bookshelf.yaml") + " --checker bullet",
         "info " + scene("bookshelf.yaml") + " --self-link-resolution 0",
+        "info " + scene("bookshelf.yaml") + " --exact-primitives yes",
         "plan " + scene("bookshelf.yaml") + " --time", "check " + scene("bookshelf.yaml")}) {
     const CliRun r = run(args);
     EXPECT_NE(r.status, 0) << args;

@@ -32,7 +32,7 @@ environment:
   - pointcloud: {file: scan.pcd}
   - octomap: {file: /maps/room.bt}
 octree: {resolution: 0.01, link_resolution: 0.02, self_link_resolution: 0.004,
-         self_pair_tables: true, rounding: center,
+         self_pair_tables: true, exact_primitives: true, rounding: center,
          checker: octree}
 problem:
   start: [0, 0.1, 0, -1.2, 0, 1.0, 0, 0.02]
@@ -75,6 +75,7 @@ TEST(Scene, ParsesEveryField) {
   EXPECT_DOUBLE_EQ(*s.octree.link_resolution, 0.02);
   EXPECT_DOUBLE_EQ(*s.octree.self_link_resolution, 0.004);
   EXPECT_TRUE(s.octree.self_pair_tables);
+  EXPECT_TRUE(s.octree.exact_primitives);
   EXPECT_EQ(s.octree.rounding, Rounding::kCenter);
   EXPECT_EQ(s.octree.checker, "octree");
   ASSERT_TRUE(s.problem.start && s.problem.goal);
@@ -120,6 +121,7 @@ void expectError(const std::string& yaml, const std::string& field) {
 TEST(Scene, BadFieldsAreNamed) {
   expectError("robot: {urdf: a.urdf, mesh: b.stl}", "robot");
   expectError("robot: {mesh: m.stl}\noctree: {self_pair_tables: maybe}", "octree.self_pair_tables");
+  expectError("robot: {mesh: m.stl}\noctree: {exact_primitives: 1}", "octree.exact_primitives");
   expectError("robot: {}", "robot");
   expectError("environment: []", "robot: missing");
   expectError("robot: {mesh: m.stl}\nenvironment:\n  - box: {size: [1, 0, 1]}",

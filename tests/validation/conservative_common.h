@@ -6,7 +6,9 @@
 //  - free space is eaten by a bounded margin only: a state the octree checker rejects but FCL
 //    does not lies within delta_env = sqrt(3) (r_e + r_l) of the environment (FCL distance), or
 //    within delta_self = 2 sqrt(3) r_s between the links of a checked pair (r_s: the self
-//    pairs' link voxels, r_l unless self_link_resolution sets finer ones).
+//    pairs' link voxels, r_l unless self_link_resolution sets finer ones); with exact primitives
+//    (every scene's obstacles are primitives) delta_env = sqrt(3) r_l, the link leaves' margin
+//    alone.
 #pragma once
 
 #include <cmath>
@@ -30,12 +32,22 @@ inline std::string describe(const Sample& s) {
   return out.str();
 }
 
+// What one run found: FCL's contacts and the octree checker's extra (false-positive) answers.
+struct ConservativeCounts {
+  std::size_t fcl_env = 0, extra_env = 0, extra_self = 0;
+};
+
 // Checks states [begin, end) of the scene's kStates uniform states (kSeed) with one checker path.
-inline void checkConservative(const std::string& scene_file, const std::string& checker,
-                              std::size_t begin, std::size_t end,
-                              std::optional<double> self_link_resolution = {}) {
-  const PlanningScene scene =
-      loadValidationScene(scene_file, Rounding::kConservative, checker, self_link_resolution);
+inline ConservativeCounts checkConservative(const std::string& scene_file,
+                                            const std::string& checker, std::size_t begin,
+                                            std::size_t end,
+                                            std::optional<double> self_link_resolution = {},
+                                            bool exact_primitives = false) {
+  const PlanningScene scene = loadValidationScene(scene_file, Rounding::kConservative, checker,
+                                                  self_link_resolution, exact_primitives);
+  if (exact_primitives) {
+    EXPECT_GT(scene.model->report().exact_primitives, 0u) << "exact primitives not applied";
+  }
   const OctreeCollisionModel& octree = *scene.model;
   const std::shared_ptr<const FclCollisionModel> reference = exactReference(scene);
   const FclCollisionModel& fcl = *reference;
@@ -43,7 +55,8 @@ inline void checkConservative(const std::string& scene_file, const std::string& 
   const RobotModel& robot = octree.robot();
   const Resolutions r = resolutionsOf(octree);
   // docs/validation.md §2: a voxel of each tree lies between the two surfaces.
-  const double delta_env = std::sqrt(3.0) * (r.environment + r.link) + kTieSlack;
+  const double delta_env =
+      std::sqrt(3.0) * ((exact_primitives ? 0.0 : r.environment) + r.link) + kTieSlack;
   const double delta_self = 2 * std::sqrt(3.0) * r.self_link + kTieSlack;
 
   CheckScratch scratch = octree.makeScratch();
@@ -99,19 +112,21 @@ inline void checkConservative(const std::string& scene_file, const std::string& 
       }
     }
   }
-  std::cout << "[ rates    ] " << sceneLabel(scene_file) << " " << checker << " states " << begin
-            << ".." << end << " r_e " << r.environment << " r_l " << r.link << " r_s "
-            << r.self_link << ": FCL env " << fcl_env << " self " << fcl_self << ", octree env "
-            << octree_env << " self " << octree_self << " of " << (end - begin)
-            << "; false positives env " << extra_env << " (worst FCL distance " << worst_env
-            << " <= delta " << delta_env << ") self " << extra_self << " (worst " << worst_self
-            << " <= delta " << delta_self << ")\n";
+  std::cout << "[ rates    ] " << sceneLabel(scene_file) << " " << checker
+            << (exact_primitives ? " exact-primitives" : "") << " states " << begin << ".." << end
+            << " r_e " << r.environment << " r_l " << r.link << " r_s " << r.self_link
+            << ": FCL env " << fcl_env << " self " << fcl_self << ", octree env " << octree_env
+            << " self " << octree_self << " of " << (end - begin) << "; false positives env "
+            << extra_env << " (worst FCL distance " << worst_env << " <= delta " << delta_env
+            << ") self " << extra_self << " (worst " << worst_self << " <= delta " << delta_self
+            << ")\n";
   EXPECT_EQ(missed_env, 0u) << first_failure;
   EXPECT_EQ(missed_self, 0u) << first_failure;
   EXPECT_EQ(beyond_env, 0u) << first_failure;
   EXPECT_EQ(beyond_self, 0u) << first_failure;
   // Not vacuous: the scene must put the robot against its environment some of the time.
   EXPECT_GT(fcl_env, 0u) << "no sampled state touches the environment";
+  return {fcl_env, extra_env, extra_self};
 }
 
 // The kStates states of the checker path split into `shards` executables (CI time budget: the

@@ -32,6 +32,21 @@ inline std::vector<std::string> sceneFiles() {
   return files;
 }
 
+// The scenes whose obstacles are all primitives (CollisionModelOptions::exact_primitives applies).
+inline std::vector<std::string> primitiveSceneFiles() {
+  std::vector<std::string> files;
+  for (const std::string& f : sceneFiles()) {
+    const SceneSpec spec = loadScene(f);
+    if (std::all_of(spec.environment.begin(), spec.environment.end(),
+                    [](const EnvironmentObject& o) {
+                      return o.kind == EnvironmentObject::Kind::kPrimitive;
+                    })) {
+      files.push_back(f);
+    }
+  }
+  return files;
+}
+
 inline std::string sceneLabel(const std::string& path) {
   return std::filesystem::path(path).stem().string();
 }
@@ -49,12 +64,14 @@ inline std::string testName(const std::string& path) {
 // their scene's resolution (auto when it has none), since they are small next to 2 cm.
 inline PlanningScene loadValidationScene(const std::string& path, Rounding rounding,
                                          const std::string& checker = "octree-fused",
-                                         std::optional<double> self_link_resolution = {}) {
+                                         std::optional<double> self_link_resolution = {},
+                                         bool exact_primitives = false) {
   ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
   SceneOverrides overrides;
   overrides.rounding = rounding;
   overrides.checker = checker;
   overrides.self_link_resolution = self_link_resolution;
+  overrides.exact_primitives = exact_primitives;
   const SceneSpec spec = loadScene(path);
   bool arm = !spec.robot.urdf.empty();
   if (arm) {

@@ -22,6 +22,7 @@
 #include "octomotion/motion/box_overlap.h"
 #include "octomotion/motion/collides.h"
 #include "octomotion/motion/pose.h"
+#include "octomotion/motion/primitive_contact.h"
 #include "octomotion/octree/octree.h"
 #include "octomotion/octree/rounding.h"
 #include "octomotion/planner/environment.h"
@@ -154,6 +155,15 @@ struct CollisionModelOptions {
   // voxelizations keep the voxels the two boxes overlap); the tree query is skipped where a link
   // crosses a board or a wall.
   bool core_boxes = true;
+  // Conservative rounding, an environment of primitives only (boxes, balls, cylinders): after
+  // the pre-tests and certain contacts, each link's black source voxels are tested against the
+  // primitives' exact shapes (blackLeafMeetsPrimitive) instead of the environment tree. The
+  // obstacles' voxel margin (up to a voxel diagonal beyond each) is gone; the link voxels'
+  // margin stays, so no contact FCL finds is missed (docs/validation.md §2). An environment
+  // with meshes, point clouds or OctoMaps keeps the tree query and gets a warning
+  // (CollisionModelReport::exact_primitives says whether it applied). Off by default: the
+  // environment octree is the library's general path (docs/planner.md, "Exact primitives").
+  bool exact_primitives = false;
   WarningSink warnings;
 };
 
@@ -205,7 +215,10 @@ struct CollisionModelReport {
   EnvironmentPreTest environment_pre_test = EnvironmentPreTest::kEnvironmentBox;  // resolved
   std::size_t environment_object_boxes = 0;  // object boxes the pre-test loops over
   std::size_t environment_solid_boxes = 0;   // inscribed boxes of primitives, for core boxes
-  int environment_cell_grid_level = -1;      // BlackCellGrid of the environment (-1: none)
+  // CollisionModelOptions::exact_primitives in force: the primitives the links are tested
+  // against (0: off, or the environment is not all primitives, or centre rounding).
+  std::size_t exact_primitives = 0;
+  int environment_cell_grid_level = -1;  // BlackCellGrid of the environment (-1: none)
   std::size_t environment_cell_grid_bytes = 0;
   int environment_clearance_grid_level = -1;  // ClearanceGrid of the environment (-1: none)
   std::size_t environment_clearance_grid_bytes = 0;
@@ -308,6 +321,18 @@ class OctreeCollisionModel {
   // One of the link's core boxes overlaps a solid box: the link's moved tree and the
   // environment share a black voxel.
   bool certainContact(const LinkVoxels& v, const Eigen::Isometry3d& X_WL) const;
+  // CollisionModelOptions::exact_primitives: a primitive obstacle in its own frame P, and its
+  // world AABB (half sides extent_W). A link is tested against it when the world box of the
+  // link's black voxels grown by kExactReachVoxels link voxels meets that AABB: a link voxel's
+  // bounding sphere reaches (√3 - 1)/2 of a voxel beyond the voxel.
+  struct ExactPrimitive {
+    PrimitiveShape shape;
+    Eigen::Isometry3d X_PW;
+    Eigen::Vector3d centre_W, extent_W;
+  };
+  static constexpr double kExactReachVoxels = 1.0;
+  // A black voxel of the link's environment tree meets one of exact_primitives_.
+  bool leavesMeetPrimitives(const LinkVoxels& v, const Eigen::Isometry3d& X_WL) const;
   struct LinkTree {
     int link = -1;
     LinkVoxels voxels;  // tested against the environment (and the other links, unless below)
@@ -403,6 +428,7 @@ class OctreeCollisionModel {
   };
   std::vector<ObjectFrameBox> object_frame_boxes_;
   std::vector<SolidBox> solid_boxes_W_;
+  std::vector<ExactPrimitive> exact_primitives_;
   std::vector<LinkTree> links_;  // modelled links only
   // The links that can touch the environment, in the order environmentInCollision tests them:
   // most often hit first (LinkReport::environment_hit_share), ties in model order. Free states

@@ -36,6 +36,7 @@ struct SceneOverrides {
   std::optional<double> link_resolution;       // > 0; octree.link_resolution
   std::optional<double> self_link_resolution;  // > 0; octree.self_link_resolution
   std::optional<bool> self_pair_tables;        // octree.self_pair_tables
+  std::optional<bool> exact_primitives;        // octree.exact_primitives
 };
 
 // The resolution used when a scene says `auto` (or a .cfg says nothing): fixed-base arms 1 cm;

@@ -47,6 +47,8 @@ struct OctreeSettings {
   std::optional<double> self_link_resolution;
   // Joint-space tables for self pairs of few joints (CollisionModelOptions::self_pair_tables).
   bool self_pair_tables = false;
+  // Contacts confirmed against primitives' exact shapes (CollisionModelOptions::exact_primitives).
+  bool exact_primitives = false;
   Rounding rounding = Rounding::kConservative;
   std::string checker = "octree-fused";  // one of kCheckerNames
   // Memory guard (CollisionModelOptions::max_surface_voxels); empty = the library default.

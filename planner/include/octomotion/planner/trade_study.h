@@ -26,8 +26,9 @@ struct StudyPlanner {
 struct TradeStudyOptions {
   std::string scene_path;
   // Package paths, the seed, the time limit, and the scene's octree options that apply to every
-  // setting: self_pair_tables and max_surface_voxels (they override the scene's). The settings
-  // themselves (resolution, rounding, checker, self_link_resolution) come from the fields below.
+  // setting: self_pair_tables, exact_primitives and max_surface_voxels (they override the scene's).
+  // The settings themselves (resolution, rounding, checker, self_link_resolution) come from the
+  // fields below.
   SceneOverrides overrides;
   std::vector<double> resolutions;  // metres; empty: defaultResolutions()
   std::vector<Rounding> roundings = {Rounding::kConservative, Rounding::kCenter};
@@ -115,6 +116,7 @@ struct TradeStudyResult {
   double link_resolution_ratio = kDefaultLinkResolutionRatio;
   double self_link_resolution_ratio = 1.0;
   bool self_pair_tables = false;  // the scene's octree.self_pair_tables
+  bool exact_primitives = false;  // the scene's octree.exact_primitives
   std::vector<CheckRow> checks;
   std::vector<PlanRow> planning;
 };
