@@ -70,9 +70,9 @@ double sampledDistance(const Primitive& p, const Eigen::Vector3d& x, double* ste
     for (int i = 0; i <= n; ++i)
       for (int j = 0; j < 2 * n; ++j) {
         const double th = M_PI * i / n, ph = M_PI * j / n;
-        const Eigen::Vector3d q = s->radius * Eigen::Vector3d(std::sin(th) * std::cos(ph),
-                                                              std::sin(th) * std::sin(ph),
-                                                              std::cos(th));
+        const Eigen::Vector3d q =
+            s->radius *
+            Eigen::Vector3d(std::sin(th) * std::cos(ph), std::sin(th) * std::sin(ph), std::cos(th));
         best = std::min(best, (q - x).norm());
       }
     *step = 2 * M_PI * s->radius / n;
@@ -175,11 +175,11 @@ TEST(BlackLeafMeetsPrimitive, EqualsTheLeafRuleOnEveryLeafAndFindsEveryOverlap) 
   int hits = 0, misses = 0, overlaps = 0, near_only = 0;
   for (int trial = 0; trial < 1000; ++trial) {
     const WorldGrid& g = grids[trial % 2];
-    const Octree source = trial % 7 == 0
-                              ? voxelize(g, Cylinder{0.02, 0.05},
-                                         Eigen::Isometry3d(Eigen::Translation3d(test::gridCentre(g))),
-                                         Rounding::kConservative)
-                              : test::randomShape(g.depth(), rng, 2, 6).toTree(g);
+    const Octree source =
+        trial % 7 == 0 ? voxelize(g, Cylinder{0.02, 0.05},
+                                  Eigen::Isometry3d(Eigen::Translation3d(test::gridCentre(g))),
+                                  Rounding::kConservative)
+                       : test::randomShape(g.depth(), rng, 2, 6).toTree(g);
     const MovableSource prepared(source);
     const Primitive p = randomPrimitive(rng, trial);
     // The primitive near the source's centre, so that contacts and near misses both occur.

@@ -35,16 +35,16 @@ std::vector<EnvironmentObject> obstacles(std::uint64_t seed) {
     o.name = "object" + std::to_string(i);
     switch (i % 3) {
       case 0:
-        o.primitive = Cylinder{i % 2 ? 0.012 : 0.012 + 0.03 * std::abs(u(rng)),
-                               0.1 + 0.5 * std::abs(u(rng))};
+        o.primitive =
+            Cylinder{i % 2 ? 0.012 : 0.012 + 0.03 * std::abs(u(rng)), 0.1 + 0.5 * std::abs(u(rng))};
         break;
       case 1:
         o.primitive = Sphere{0.01 + 0.05 * std::abs(u(rng))};
         break;
       default:
-        o.primitive = Box{Eigen::Vector3d(0.05 + 0.15 * std::abs(u(rng)),
-                                          0.05 + 0.15 * std::abs(u(rng)),
-                                          0.002 + 0.01 * std::abs(u(rng)))};
+        o.primitive =
+            Box{Eigen::Vector3d(0.05 + 0.15 * std::abs(u(rng)), 0.05 + 0.15 * std::abs(u(rng)),
+                                0.002 + 0.01 * std::abs(u(rng)))};
     }
     if (i % 4 != 0) {
       o.X_WO.linear() = Eigen::Quaterniond(u(rng), u(rng), u(rng), u(rng)).normalized().matrix();
@@ -113,8 +113,8 @@ TEST(ExactPrimitives, AnswerIsEveryLinkLeafAgainstEveryObject) {
     o.exact_primitives = false;
     const OctreeCollisionModel voxels(robot, env, o);
     const LeafOracle oracle(exact, objects);
-    const std::string where = "resolution " + std::to_string(s.res) + ", link trees " +
-                              std::to_string(s.link_res);
+    const std::string where =
+        "resolution " + std::to_string(s.res) + ", link trees " + std::to_string(s.link_res);
     for (const CheckerPath path : {CheckerPath::kFused, CheckerPath::kMoveTree}) {
       CheckScratch a = exact.makeScratch(), b = voxels.makeScratch();
       int hits = 0, voxel_only = 0;
