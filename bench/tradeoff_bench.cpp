@@ -39,7 +39,7 @@ const char* kUsage = R"(usage: tradeoff_bench [options]
   --self-link-ratio R     self-collision link trees at R x each resolution (default: --link-ratio
                           if given, else 1, the library's defaults)
   --self-pair-tables on|off  joint-space tables for self pairs (default: the scene's setting)
-  --exact-primitives on|off  contacts confirmed against primitives' exact shapes (default: the
+  --exact-primitives on|off  the links tested against primitives' exact shapes (default: the
                            scene's setting)
 )";
 

@@ -42,7 +42,7 @@ bench options:
   --package-path DIR       extra package:// search path (repeatable)
   --self-pair-tables on|off  joint-space tables for self pairs in every conservative setting
                            (default: the scene's octree.self_pair_tables)
-  --exact-primitives on|off  contacts confirmed against the primitives' exact shapes in every
+  --exact-primitives on|off  the links tested against the primitives' exact shapes in every
                            conservative setting (default: the scene's octree.exact_primitives)
   --max-surface-voxels N   the memory guard (default: the scene's, else the library's)
 )";

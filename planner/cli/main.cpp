@@ -44,8 +44,9 @@ options:
                              fewer false positives of near self pairs; docs/trade-off.md)
   --self-pair-tables on|off  joint-space tables for self pairs of 1-2 variables (default off;
                              docs/planner.md, "Self-pair tables")
-  --exact-primitives on|off  confirm contacts against the primitives' exact shapes (default
-                             off; docs/planner.md, "Exact primitives")
+  --exact-primitives on|off  test the links against the scene's boxes, balls and cylinders
+                             themselves, not their voxels (default off; docs/planner.md,
+                             "Exact primitives")
   --interpolation METRES     plan: spacing of the written path's states (default: OMPL's)
   --verbose                  OMPL's log messages on stderr
 )";

@@ -421,36 +421,51 @@ OctreeCollisionModel::OctreeCollisionModel(RobotModel robot, const EnvironmentGe
   environment_clearance_ = std::make_unique<const ClearanceGrid>(environment_);
   report_.environment_clearance_grid_level = environment_clearance_->level();
   report_.environment_clearance_grid_bytes = environment_clearance_->bytes();
-  // 5'. Exact primitives: when every object is a primitive, the environment half tests the
-  // links' black source voxels against the primitives themselves (linkHitsEnvironment) instead
-  // of the environment tree; a mesh or a point cloud has no such shape to test against.
-  const bool all_primitives =
-      !environment.items().empty() &&
-      std::all_of(environment.items().begin(), environment.items().end(),
-                  [](const EnvironmentGeometry::Item& item) {
-                    return item.spec.kind == EnvironmentObject::Kind::kPrimitive;
-                  });
-  if (options.exact_primitives &&
-      (options.rounding != Rounding::kConservative || !all_primitives)) {
+  // 5'. Exact primitives: the environment half tests the links' black source voxels against the
+  // primitives themselves (linkHitsEnvironment) instead of the environment tree; the other
+  // objects, which have no such shape, get a tree of their own on the same grid.
+  auto isPrimitive = [](const EnvironmentGeometry::Item& item) {
+    return item.spec.kind == EnvironmentObject::Kind::kPrimitive;
+  };
+  const bool any_primitive =
+      std::any_of(environment.items().begin(), environment.items().end(), isPrimitive);
+  if (options.exact_primitives && !environment.items().empty() &&
+      (options.rounding != Rounding::kConservative || !any_primitive)) {
     warn(options.warnings,
          options.rounding != Rounding::kConservative
              ? "octree.exact_primitives: not applied under centre rounding"
-             : "octree.exact_primitives: not applied, the environment has objects that are not "
-               "primitives (meshes, point clouds or OctoMaps); the voxel answers stand");
+             : "octree.exact_primitives: not applied, the environment has no primitives (boxes, "
+               "balls, cylinders); the voxel answers stand");
   }
   const bool exact =
-      options.exact_primitives && options.rounding == Rounding::kConservative && all_primitives;
+      options.exact_primitives && options.rounding == Rounding::kConservative && any_primitive;
+  auto blackBox = [&grid](const Octree& tree) {
+    const auto b = tree.bounds();
+    return b ? Eigen::AlignedBox3d(grid.cubeMin(Cube{0, b->min}), grid.cubeMax(Cube{0, b->max}))
+             : Eigen::AlignedBox3d();
+  };
   if (exact) {
     for (const EnvironmentGeometry::Item& item : environment.items()) {
+      if (!isPrimitive(item)) continue;
       const Eigen::Vector3d extent_W =
           item.spec.X_WO.linear().cwiseAbs() * boxHalfSides(item.spec.primitive);
       exact_primitives_.push_back({PrimitiveShape(item.spec.primitive), item.spec.X_WO.inverse(),
                                    item.spec.X_WO.translation(), extent_W});
       environment_box_W_.extend(item.bounds_W);
     }
-  } else if (const auto b = environment_.bounds()) {
-    environment_box_W_ =
-        Eigen::AlignedBox3d(grid.cubeMin(Cube{0, b->min}), grid.cubeMax(Cube{0, b->max}));
+    const EnvironmentGeometry others = environment.withoutPrimitives();
+    if (others.size() > 0) {
+      auto v = std::make_unique<VoxelObjects>(
+          VoxelObjects{others.voxelize(grid, Rounding::kConservative, nullptr, WarningSink{}),
+                       nullptr, nullptr});
+      v->cells = std::make_unique<const BlackCellGrid>(v->tree);
+      v->clearance = std::make_unique<const ClearanceGrid>(v->tree);
+      environment_box_W_.extend(blackBox(v->tree));
+      report_.exact_primitives_other_objects = others.size();
+      other_objects_ = std::move(v);
+    }
+  } else {
+    environment_box_W_ = blackBox(environment_);
   }
   report_.exact_primitives = exact_primitives_.size();
 
@@ -858,7 +873,16 @@ bool OctreeCollisionModel::linkHitsEnvironment(const EnvironmentLinkTest& t,
   // A certain contact has a point inside a primitive and inside a black link leaf: the exact
   // primitives' answer too.
   if (certainContact(v, X_WL)) return true;
-  if (!exact_primitives_.empty()) return leavesMeetPrimitives(v, X_WL);
+  if (!exact_primitives_.empty()) {
+    if (leavesMeetPrimitives(v, X_WL)) return true;
+    if (!other_objects_) return false;
+    const VoxelObjects& o = *other_objects_;
+    if (path == CheckerPath::kFused) {
+      return collides(*v.movable, X_WL, o.tree, options_.rounding, fused, nullptr, o.cells.get(),
+                      o.clearance.get());
+    }
+    return intersects(moveTree(v.source, X_WL, o.tree.grid(), options_.rounding), o.tree);
+  }
   if (path == CheckerPath::kFused) {
     return collides(*v.movable, X_WL, environment_, options_.rounding, fused, nullptr,
                     environment_cells_.get(), environment_clearance_.get());
@@ -1132,7 +1156,11 @@ std::string CollisionModelReport::toString() const {
       << " primitives' inscribed boxes\n";
   if (exact_primitives > 0) {
     out << "exact primitives: the links' source voxels tested against " << exact_primitives
-        << " primitives' exact shapes (not the environment tree)\n";
+        << " primitives' exact shapes (not the environment tree)";
+    if (exact_primitives_other_objects > 0) {
+      out << "; the " << exact_primitives_other_objects << " other objects in a tree of their own";
+    }
+    out << "\n";
   }
   out << "environment tested in the order (share of sampled states hitting):";
   for (const std::string& name : environment_order) {

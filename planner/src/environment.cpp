@@ -113,6 +113,14 @@ std::optional<Eigen::AlignedBox3d> EnvironmentGeometry::bounds() const {
   return box;
 }
 
+EnvironmentGeometry EnvironmentGeometry::withoutPrimitives() const {
+  EnvironmentGeometry rest;
+  for (const Item& item : items_) {
+    if (item.spec.kind != EnvironmentObject::Kind::kPrimitive) rest.items_.push_back(item);
+  }
+  return rest;
+}
+
 Octree EnvironmentGeometry::voxelize(const WorldGrid& grid, Rounding rounding,
                                      EnvironmentReport* report, const WarningSink& warnings) const {
   const auto start = std::chrono::steady_clock::now();

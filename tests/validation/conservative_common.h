@@ -7,8 +7,7 @@
 //    does not lies within delta_env = sqrt(3) (r_e + r_l) of the environment (FCL distance), or
 //    within delta_self = 2 sqrt(3) r_s between the links of a checked pair (r_s: the self
 //    pairs' link voxels, r_l unless self_link_resolution sets finer ones); with exact primitives
-//    (every scene's obstacles are primitives) delta_env = sqrt(3) r_l, the link leaves' margin
-//    alone.
+//    in a scene of primitives only, delta_env = sqrt(3) r_l, the link voxels' margin alone.
 #pragma once
 
 #include <cmath>
@@ -48,6 +47,9 @@ inline ConservativeCounts checkConservative(const std::string& scene_file,
   if (exact_primitives) {
     EXPECT_GT(scene.model->report().exact_primitives, 0u) << "exact primitives not applied";
   }
+  // Exact primitives and nothing else: the environment's voxel drops out of the margin.
+  const bool only_primitives =
+      exact_primitives && scene.model->report().exact_primitives_other_objects == 0;
   const OctreeCollisionModel& octree = *scene.model;
   const std::shared_ptr<const FclCollisionModel> reference = exactReference(scene);
   const FclCollisionModel& fcl = *reference;
@@ -56,7 +58,7 @@ inline ConservativeCounts checkConservative(const std::string& scene_file,
   const Resolutions r = resolutionsOf(octree);
   // docs/validation.md §2: a voxel of each tree lies between the two surfaces.
   const double delta_env =
-      std::sqrt(3.0) * ((exact_primitives ? 0.0 : r.environment) + r.link) + kTieSlack;
+      std::sqrt(3.0) * ((only_primitives ? 0.0 : r.environment) + r.link) + kTieSlack;
   const double delta_self = 2 * std::sqrt(3.0) * r.self_link + kTieSlack;
 
   CheckScratch scratch = octree.makeScratch();

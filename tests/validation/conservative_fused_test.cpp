@@ -30,9 +30,10 @@ INSTANTIATE_TEST_SUITE_P(
                       std::string(OCTOMOTION_SOURCE_DIR) + "/robots/scenes/cluttered_table.yaml"),
     [](const auto& param_info) { return testName(param_info.param); });
 
-// Exact primitives (every scene's obstacles are boxes, balls and cylinders): the same guarantees
-// with delta_env = sqrt(3) r_l — the link leaves' margin alone — and, on the same states, fewer
-// environment false positives than the voxel answers (the obstacles' voxel margin is gone).
+// Exact primitives (every scene with boxes, balls or cylinders, and a table with two meshes among
+// them): the same guarantees, with delta_env = sqrt(3) r_l — the link voxels' margin alone —
+// where every obstacle is a primitive, and, on the same states, no more environment false
+// positives than the voxel answers (fewer where those have 20 or more).
 class ConservativeFusedExactPrimitives : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(ConservativeFusedExactPrimitives, NeverMissesAndEatsFreeSpaceByTheLinkMarginOnly) {

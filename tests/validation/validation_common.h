@@ -32,18 +32,20 @@ inline std::vector<std::string> sceneFiles() {
   return files;
 }
 
-// The scenes whose obstacles are all primitives (CollisionModelOptions::exact_primitives applies).
+// The scenes with primitives among their obstacles (CollisionModelOptions::exact_primitives
+// applies), and a table with meshes among its primitives.
 inline std::vector<std::string> primitiveSceneFiles() {
   std::vector<std::string> files;
   for (const std::string& f : sceneFiles()) {
     const SceneSpec spec = loadScene(f);
-    if (std::all_of(spec.environment.begin(), spec.environment.end(),
+    if (std::any_of(spec.environment.begin(), spec.environment.end(),
                     [](const EnvironmentObject& o) {
                       return o.kind == EnvironmentObject::Kind::kPrimitive;
                     })) {
       files.push_back(f);
     }
   }
+  files.push_back(std::string(OCTOMOTION_TEST_DATA_DIR) + "/scenes/mixed_table.yaml");
   return files;
 }
 

@@ -155,13 +155,13 @@ struct CollisionModelOptions {
   // voxelizations keep the voxels the two boxes overlap); the tree query is skipped where a link
   // crosses a board or a wall.
   bool core_boxes = true;
-  // Conservative rounding, an environment of primitives only (boxes, balls, cylinders): after
-  // the pre-tests and certain contacts, each link's black source voxels are tested against the
-  // primitives' exact shapes (blackLeafMeetsPrimitive) instead of the environment tree. The
-  // obstacles' voxel margin (up to a voxel diagonal beyond each) is gone; the link voxels'
-  // margin stays, so no contact FCL finds is missed (docs/validation.md §2). An environment
-  // with meshes, point clouds or OctoMaps keeps the tree query and gets a warning
-  // (CollisionModelReport::exact_primitives says whether it applied). Off by default: the
+  // Conservative rounding: after the pre-tests and certain contacts, each link's black source
+  // voxels are tested against the scene's primitives (boxes, balls, cylinders) themselves
+  // (blackLeafMeetsPrimitive) instead of their voxels; the other objects (meshes, point clouds,
+  // OctoMaps) are queried in a second tree of their own. The primitives' voxel margin (up to a
+  // voxel diagonal beyond each) is gone; the link voxels' margin stays, so no contact FCL finds
+  // is missed (docs/validation.md §2). Without primitives, or under centre rounding, it does not
+  // apply (a warning; CollisionModelReport::exact_primitives is 0). Off by default: the
   // environment octree is the library's general path (docs/planner.md, "Exact primitives").
   bool exact_primitives = false;
   WarningSink warnings;
@@ -216,8 +216,10 @@ struct CollisionModelReport {
   std::size_t environment_object_boxes = 0;  // object boxes the pre-test loops over
   std::size_t environment_solid_boxes = 0;   // inscribed boxes of primitives, for core boxes
   // CollisionModelOptions::exact_primitives in force: the primitives the links are tested
-  // against (0: off, or the environment is not all primitives, or centre rounding).
+  // against (0: off, no primitives, or centre rounding), and the other objects, queried in a
+  // tree of their own.
   std::size_t exact_primitives = 0;
+  std::size_t exact_primitives_other_objects = 0;
   int environment_cell_grid_level = -1;  // BlackCellGrid of the environment (-1: none)
   std::size_t environment_cell_grid_bytes = 0;
   int environment_clearance_grid_level = -1;  // ClearanceGrid of the environment (-1: none)
@@ -429,6 +431,14 @@ class OctreeCollisionModel {
   std::vector<ObjectFrameBox> object_frame_boxes_;
   std::vector<SolidBox> solid_boxes_W_;
   std::vector<ExactPrimitive> exact_primitives_;
+  // With exact primitives in a scene that also has other objects: their tree (on the
+  // environment's grid) and its grids, queried like the environment tree.
+  struct VoxelObjects {
+    Octree tree;
+    std::unique_ptr<const BlackCellGrid> cells;
+    std::unique_ptr<const ClearanceGrid> clearance;
+  };
+  std::unique_ptr<const VoxelObjects> other_objects_;
   std::vector<LinkTree> links_;  // modelled links only
   // The links that can touch the environment, in the order environmentInCollision tests them:
   // most often hit first (LinkReport::environment_hit_share), ties in model order. Free states

@@ -45,6 +45,8 @@ class EnvironmentGeometry {
 
   // World-frame bounding box of every object; empty when there are none.
   std::optional<Eigen::AlignedBox3d> bounds() const;
+  // The same objects less the primitives (for a tree of what has no exact shape to test).
+  EnvironmentGeometry withoutPrimitives() const;
   // The union of every object's octree on `grid`.
   Octree voxelize(const WorldGrid& grid, Rounding rounding, EnvironmentReport* report = nullptr,
                   const WarningSink& warnings = {}) const;
