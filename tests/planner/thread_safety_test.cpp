@@ -11,10 +11,11 @@
 namespace octomotion {
 namespace {
 
-void checkConcurrently(const char* scene_file, const char* checker) {
+void checkConcurrently(const char* scene_file, const char* checker, bool exact_primitives = false) {
   ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
   SceneOverrides overrides;
   overrides.checker = checker;
+  overrides.exact_primitives = exact_primitives;
   PlanningScene scene = loadPlanningScene(
       std::string(OCTOMOTION_SOURCE_DIR) + "/robots/scenes/" + scene_file, overrides);
   const auto si = scene.setup->getSpaceInformation();
@@ -57,6 +58,9 @@ TEST(ThreadSafety, ArmMoveTree) {
 }
 TEST(ThreadSafety, RigidFused) {
   checkConcurrently("narrow_passage.yaml", "octree-fused");
+}
+TEST(ThreadSafety, ArmFusedExactPrimitives) {
+  checkConcurrently("cage.yaml", "octree-fused", true);
 }
 TEST(ThreadSafety, ArmFcl) {
   checkConcurrently("bookshelf.yaml", "fcl");
