@@ -16,6 +16,7 @@
 #include "joint_states.h"
 #include "octomotion/motion/primitive_contact.h"
 #include "octomotion/planner/collision_model.h"
+#include "primitive_scenes.h"
 #include "snake_robot.h"
 
 namespace octomotion {
@@ -25,39 +26,12 @@ RobotModel snake(int links, double limit) {
   return RobotModel::fromUrdfString(test::snakeUrdf(links, limit), "snake.urdf", ".");
 }
 
-// Bars (12 mm like the cage's) and posts, balls and thin boards, upright and tilted, one pole
-// reaching out of the robot's universe.
+// The rods, posts and balls of the core-box tests (poles reaching out of the universe) with half
+// of their boards, tilted.
 std::vector<EnvironmentObject> obstacles(std::uint64_t seed) {
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(-1, 1);
-  std::vector<EnvironmentObject> objects;
-  for (int i = 0; i < 15; ++i) {
-    EnvironmentObject o;
-    o.name = "object" + std::to_string(i);
-    switch (i % 3) {
-      case 0:
-        o.primitive =
-            Cylinder{i % 2 ? 0.012 : 0.012 + 0.03 * std::abs(u(rng)), 0.1 + 0.5 * std::abs(u(rng))};
-        break;
-      case 1:
-        o.primitive = Sphere{0.01 + 0.05 * std::abs(u(rng))};
-        break;
-      default:
-        o.primitive =
-            Box{Eigen::Vector3d(0.05 + 0.15 * std::abs(u(rng)), 0.05 + 0.15 * std::abs(u(rng)),
-                                0.002 + 0.01 * std::abs(u(rng)))};
-    }
-    if (i % 4 != 0) {
-      o.X_WO.linear() = Eigen::Quaterniond(u(rng), u(rng), u(rng), u(rng)).normalized().matrix();
-    }
-    o.X_WO.translation() = 0.4 * Eigen::Vector3d(u(rng), u(rng), u(rng));
-    objects.push_back(o);
-  }
-  EnvironmentObject pole;
-  pole.name = "pole";
-  pole.primitive = Cylinder{0.02, 4.0};
-  pole.X_WO.translation() = Eigen::Vector3d(0.25, 0.1, 0);
-  objects.push_back(pole);
+  std::vector<EnvironmentObject> objects = test::rodsAndBalls(seed);
+  const std::vector<EnvironmentObject> boards = test::boards(seed + 1, true);
+  objects.insert(objects.end(), boards.begin() + 6, boards.begin() + 12);
   return objects;
 }
 
@@ -159,7 +133,7 @@ EnvironmentObject meshCube(const Eigen::Vector3d& xyz) {
 // A mesh among the primitives: the primitives exact, the mesh in a tree of its own.
 TEST(ExactPrimitives, OtherObjectsKeepTheirVoxels) {
   const RobotModel robot = snake(6, 1.6);
-  std::vector<EnvironmentObject> objects = obstacles(7);
+  std::vector<EnvironmentObject> objects = obstacles(3);
   objects.push_back(meshCube(Eigen::Vector3d(0.2, -0.2, 0.1)));
   objects.push_back(meshCube(Eigen::Vector3d(-0.25, 0.1, -0.15)));
   const EnvironmentGeometry env = EnvironmentGeometry::load(objects);
@@ -200,7 +174,7 @@ TEST(ExactPrimitives, WithoutPrimitivesOrUnderCentreRoundingTheVoxelsAnswer) {
   const auto states = test::uniformJointStates(robot, 800, 5);
   const EnvironmentGeometry cubes = EnvironmentGeometry::load(
       {meshCube(Eigen::Vector3d(0.2, -0.2, 0.1)), meshCube(Eigen::Vector3d(-0.25, 0.1, -0.15))});
-  const EnvironmentGeometry mixed = EnvironmentGeometry::load(obstacles(7));
+  const EnvironmentGeometry mixed = EnvironmentGeometry::load(obstacles(3));
   for (const Rounding rounding : {Rounding::kConservative, Rounding::kCenter}) {
     const EnvironmentGeometry& env = rounding == Rounding::kCenter ? mixed : cubes;
     CollisionModelOptions o;
