@@ -1,15 +1,14 @@
-// Exact obstacles for the last step of a conservative query: does a moved source tree come near
-// a primitive (box, ball, cylinder) itself, rather than near the primitive's voxels?
+// A source tree against an exact primitive (box, ball, cylinder), instead of against the
+// primitive's voxels.
 //
-// A conservative voxel query carries two margins: the moved source's voxels reach up to a
+// A conservative voxel query carries two margins: the placed source's voxels reach up to a
 // voxel diagonal beyond the object, and the obstacle's voxels up to one beyond the obstacle.
-// When the obstacle is a primitive its exact shape is known, so a contact the voxel query
-// reports can be confirmed against the shape with the source's own black leaves (which are
-// finer than the world's voxels for the planner's link trees): the obstacle's margin is gone
-// and only the leaves' remains. The test is conservative — a leaf that overlaps the shape is
-// always found (its bounding sphere meets the shape) — so a caller that answers "in contact"
-// only when both the voxel query and this test say so never misses a contact that either would
-// have found.
+// When the obstacle is a primitive its shape is known, so the source's own black voxels can be
+// tested against the shape itself: the obstacle's margin is gone and only the source voxels'
+// remains (a voxel diagonal). The test is conservative — every black voxel that overlaps the
+// shape is found — so, with the source voxelized conservatively, no contact of the object with
+// the shape is missed. The planner uses it for the scene's primitives under
+// `octree.exact_primitives` (docs/planner.md, "Exact primitives").
 #pragma once
 
 #include <cstdint>
