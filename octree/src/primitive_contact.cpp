@@ -2,7 +2,6 @@
 
 #include <array>
 #include <cmath>
-#include <type_traits>
 #include <variant>
 
 #include "octomotion/error.h"
@@ -10,24 +9,13 @@
 
 namespace octomotion {
 
-PrimitiveShape::PrimitiveShape(const Primitive& primitive) : kind_(Kind::kBox), a_{0, 0, 0} {
+PrimitiveShape::PrimitiveShape(const Primitive& primitive)
+    : kind_(std::holds_alternative<Box>(primitive)      ? Kind::kBox
+            : std::holds_alternative<Sphere>(primitive) ? Kind::kBall
+                                                        : Kind::kCylinder) {
   validate(primitive);
-  std::visit(
-      [this](const auto& p) {
-        using T = std::decay_t<decltype(p)>;
-        if constexpr (std::is_same_v<T, Box>) {
-          kind_ = Kind::kBox;
-          for (int i = 0; i < 3; ++i) a_[i] = p.half_extents[i];
-        } else if constexpr (std::is_same_v<T, Sphere>) {
-          kind_ = Kind::kBall;
-          a_[0] = p.radius;
-        } else {
-          kind_ = Kind::kCylinder;
-          a_[0] = p.radius;
-          a_[1] = 0.5 * p.length;
-        }
-      },
-      primitive);
+  const Eigen::Vector3d half = boxHalfSides(primitive);
+  for (int i = 0; i < 3; ++i) a_[i] = half[i];
 }
 
 double PrimitiveShape::squaredDistance(const double p[3]) const {
@@ -48,7 +36,7 @@ double PrimitiveShape::squaredDistance(const double p[3]) const {
     }
     case Kind::kCylinder:
     default: {
-      const double dz = std::fabs(p[2]) - a_[1];
+      const double dz = std::fabs(p[2]) - a_[2];
       const double axial = dz > 0 ? dz * dz : 0.0;
       const double rho2 = p[0] * p[0] + p[1] * p[1];
       if (rho2 <= a_[0] * a_[0]) return axial;

@@ -447,10 +447,8 @@ OctreeCollisionModel::OctreeCollisionModel(RobotModel robot, const EnvironmentGe
   if (exact) {
     for (const EnvironmentGeometry::Item& item : environment.items()) {
       if (!isPrimitive(item)) continue;
-      const Eigen::Vector3d extent_W =
-          item.spec.X_WO.linear().cwiseAbs() * boxHalfSides(item.spec.primitive);
       exact_primitives_.push_back({PrimitiveShape(item.spec.primitive), item.spec.X_WO.inverse(),
-                                   item.spec.X_WO.translation(), extent_W});
+                                   item.bounds_W.center(), item.bounds_W.sizes() / 2});
       environment_box_W_.extend(item.bounds_W);
     }
     const EnvironmentGeometry others = environment.withoutPrimitives();
@@ -873,21 +871,21 @@ bool OctreeCollisionModel::linkHitsEnvironment(const EnvironmentLinkTest& t,
   // A certain contact has a point inside a primitive and inside a black link leaf: the exact
   // primitives' answer too.
   if (certainContact(v, X_WL)) return true;
-  if (!exact_primitives_.empty()) {
-    if (leavesMeetPrimitives(v, X_WL)) return true;
-    if (!other_objects_) return false;
-    const VoxelObjects& o = *other_objects_;
+  // The voxels left to query: the environment tree, or with exact primitives the tree of the
+  // other objects, if any.
+  auto voxelsHit = [&](const Octree& tree, const BlackCellGrid* cells,
+                       const ClearanceGrid* clearance) {
     if (path == CheckerPath::kFused) {
-      return collides(*v.movable, X_WL, o.tree, options_.rounding, fused, nullptr, o.cells.get(),
-                      o.clearance.get());
+      return collides(*v.movable, X_WL, tree, options_.rounding, fused, nullptr, cells, clearance);
     }
-    return intersects(moveTree(v.source, X_WL, o.tree.grid(), options_.rounding), o.tree);
+    return intersects(moveTree(v.source, X_WL, tree.grid(), options_.rounding), tree);
+  };
+  if (exact_primitives_.empty()) {
+    return voxelsHit(environment_, environment_cells_.get(), environment_clearance_.get());
   }
-  if (path == CheckerPath::kFused) {
-    return collides(*v.movable, X_WL, environment_, options_.rounding, fused, nullptr,
-                    environment_cells_.get(), environment_clearance_.get());
-  }
-  return intersects(moveTree(v.source, X_WL, environment_.grid(), options_.rounding), environment_);
+  if (leavesMeetPrimitives(v, X_WL)) return true;
+  return other_objects_ && voxelsHit(other_objects_->tree, other_objects_->cells.get(),
+                                     other_objects_->clearance.get());
 }
 
 void OctreeCollisionModel::orderEnvironmentLinks() {

@@ -31,20 +31,10 @@ Primitive randomPrimitive(std::mt19937_64& rng, int kind) {
   }
 }
 
-// Inside test written from the shapes' definitions (P frame, a cylinder along z).
-bool inside(const Primitive& p, const Eigen::Vector3d& x) {
-  if (const auto* b = std::get_if<Box>(&p)) {
-    return (x.cwiseAbs() - b->half_extents).maxCoeff() <= 0;
-  }
-  if (const auto* s = std::get_if<Sphere>(&p)) return x.norm() <= s->radius;
-  const auto& c = std::get<Cylinder>(p);
-  return std::hypot(x.x(), x.y()) <= c.radius && std::fabs(x.z()) <= 0.5 * c.length;
-}
-
 // Distance to the solid by sampling its surface densely (parametrically, not by the formula under
 // test); `step` bounds the sampling error.
 double sampledDistance(const Primitive& p, const Eigen::Vector3d& x, double* step) {
-  if (inside(p, x)) {
+  if (containsPoint(p, x)) {
     *step = 0;
     return 0;
   }
@@ -162,7 +152,7 @@ LeafQuery bruteForce(const Octree& source, const Eigen::Isometry3d& X_PS, const 
       } else {
         d = h * Eigen::Vector3d(unit(rng), unit(rng), unit(rng));
       }
-      out.point_inside = inside(p, X_PS * (centre_S + d));
+      out.point_inside = containsPoint(p, X_PS * (centre_S + d));
     }
   }
   return out;

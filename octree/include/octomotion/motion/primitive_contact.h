@@ -35,7 +35,8 @@ class PrimitiveShape {
 
  private:
   Kind kind_;
-  double a_[3];  // box: half extents; ball: radius; cylinder: radius, half length
+  double a_[3];  // the shape's own box's half sides (boxHalfSides): a ball's radius in a_[0],
+                 // a cylinder's radius in a_[0] and half length in a_[2]
 };
 
 // True iff a black voxel of `source`, placed in P by X_PS (the pose of the source tree's frame —

@@ -324,9 +324,10 @@ class OctreeCollisionModel {
   // environment share a black voxel.
   bool certainContact(const LinkVoxels& v, const Eigen::Isometry3d& X_WL) const;
   // CollisionModelOptions::exact_primitives: a primitive obstacle in its own frame P, and its
-  // world AABB (half sides extent_W). A link is tested against it when the world box of the
-  // link's black voxels grown by kExactReachVoxels link voxels meets that AABB: a link voxel's
-  // bounding sphere reaches (√3 - 1)/2 of a voxel beyond the voxel.
+  // world AABB (EnvironmentGeometry::Item::bounds_W: centre_W, half sides extent_W). A link is
+  // tested against it when the world box of the link's black voxels grown by kExactReachVoxels
+  // link voxels meets that AABB: a link voxel's bounding sphere reaches (√3 - 1)/2 of a voxel
+  // beyond the voxel.
   struct ExactPrimitive {
     PrimitiveShape shape;
     Eigen::Isometry3d X_PW;
