@@ -68,6 +68,10 @@ int run(int argc, char** argv) {
   TradeStudyOptions base;
   base.move_tree_states = 2000;
   base.planners = {{"RRTConnect", 5.0}, {"RRTstar", 1.0}};
+  auto onOff = [](const std::string& flag, const std::string& v) {
+    if (v != "on" && v != "off") throw InvalidArgument(flag + ": expected on or off");
+    return v == "on";
+  };
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     auto value = [&]() -> std::string {
@@ -103,13 +107,9 @@ int run(int argc, char** argv) {
       if (!(r > 0 && r <= 1)) throw InvalidArgument("--self-link-ratio: must be in (0, 1]");
       base.self_link_resolution_ratio = r;
     } else if (arg == "--self-pair-tables") {
-      const std::string v = value();
-      if (v != "on" && v != "off") throw InvalidArgument("--self-pair-tables: expected on or off");
-      base.overrides.self_pair_tables = v == "on";
+      base.overrides.self_pair_tables = onOff(arg, value());
     } else if (arg == "--exact-primitives") {
-      const std::string v = value();
-      if (v != "on" && v != "off") throw InvalidArgument("--exact-primitives: expected on or off");
-      base.overrides.exact_primitives = v == "on";
+      base.overrides.exact_primitives = onOff(arg, value());
     } else if (arg == "--no-fcl-octomap") {
       base.fcl_octomap = false;
     } else if (arg == "-h" || arg == "--help") {

@@ -17,6 +17,16 @@ double parseNumber(const std::string& flag, const std::string& value) {
   return v;
 }
 
+namespace {
+
+// An on|off switch's value.
+bool onOff(const std::string& flag, const std::string& v) {
+  if (v != "on" && v != "off") throw InvalidArgument(flag + ": expected on or off");
+  return v == "on";
+}
+
+}  // namespace
+
 bool parseSceneOption(const std::string& arg, const std::function<std::string()>& value,
                       SceneOverrides& overrides) {
   if (arg == "--planner") {
@@ -55,13 +65,9 @@ bool parseSceneOption(const std::string& arg, const std::function<std::string()>
     if (!(r > 0)) throw InvalidArgument("--self-link-resolution: must be > 0");
     overrides.self_link_resolution = r;
   } else if (arg == "--self-pair-tables") {
-    const std::string v = value();
-    if (v != "on" && v != "off") throw InvalidArgument("--self-pair-tables: expected on or off");
-    overrides.self_pair_tables = v == "on";
+    overrides.self_pair_tables = onOff(arg, value());
   } else if (arg == "--exact-primitives") {
-    const std::string v = value();
-    if (v != "on" && v != "off") throw InvalidArgument("--exact-primitives: expected on or off");
-    overrides.exact_primitives = v == "on";
+    overrides.exact_primitives = onOff(arg, value());
   } else if (arg == "--package-path") {
     overrides.package_paths.push_back(value());
   } else {

@@ -261,20 +261,16 @@ void parseOctree(const YamlReader& r, const YAML::Node& node, SceneSpec& scene) 
     s.self_link_resolution =
         r.positive(node["self_link_resolution"], "octree.self_link_resolution");
   }
-  if (node["self_pair_tables"]) {
-    const std::string v = r.string(node["self_pair_tables"], "octree.self_pair_tables");
-    if (v != "true" && v != "false") {
-      r.fail("octree.self_pair_tables", node["self_pair_tables"], "expected true or false");
-    }
-    s.self_pair_tables = v == "true";
-  }
-  if (node["exact_primitives"]) {
-    const std::string v = r.string(node["exact_primitives"], "octree.exact_primitives");
-    if (v != "true" && v != "false") {
-      r.fail("octree.exact_primitives", node["exact_primitives"], "expected true or false");
-    }
-    s.exact_primitives = v == "true";
-  }
+  // A true/false switch, named octree.KEY in errors.
+  auto flag = [&](const char* key, bool& out) {
+    if (!node[key]) return;
+    const std::string field = std::string("octree.") + key;
+    const std::string v = r.string(node[key], field);
+    if (v != "true" && v != "false") r.fail(field, node[key], "expected true or false");
+    out = v == "true";
+  };
+  flag("self_pair_tables", s.self_pair_tables);
+  flag("exact_primitives", s.exact_primitives);
   if (node["max_surface_voxels"]) {
     s.max_surface_voxels = r.positive(node["max_surface_voxels"], "octree.max_surface_voxels");
   }
