@@ -13,6 +13,15 @@
 
 namespace octomotion::test {
 
+// Within 40 cm of the origin, turned at random when `tilt`.
+inline void placeAtRandom(EnvironmentObject& o, std::mt19937_64& rng, bool tilt) {
+  std::uniform_real_distribution<double> u(-1, 1);
+  if (tilt) {
+    o.X_WO.linear() = Eigen::Quaterniond(u(rng), u(rng), u(rng), u(rng)).normalized().matrix();
+  }
+  o.X_WO.translation() = 0.4 * Eigen::Vector3d(u(rng), u(rng), u(rng));
+}
+
 inline std::vector<EnvironmentObject> boards(std::uint64_t seed, bool rotated) {
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> u(-1, 1);
@@ -25,10 +34,7 @@ inline std::vector<EnvironmentObject> boards(std::uint64_t seed, bool rotated) {
         i % 4 == 0 ? 0.05 + 0.05 * std::abs(u(rng)) : 0.0015 + 0.0085 * std::abs(u(rng));
     box.primitive =
         Box{Eigen::Vector3d(0.05 + 0.15 * std::abs(u(rng)), 0.05 + 0.15 * std::abs(u(rng)), thick)};
-    if (rotated) {
-      box.X_WO.linear() = Eigen::Quaterniond(u(rng), u(rng), u(rng), u(rng)).normalized().matrix();
-    }
-    box.X_WO.translation() = 0.4 * Eigen::Vector3d(u(rng), u(rng), u(rng));
+    placeAtRandom(box, rng, rotated);
     objects.push_back(box);
   }
   // Two reaching beyond the robot, so out of the universe (fit to the reach): the axis-aligned
@@ -61,10 +67,7 @@ inline std::vector<EnvironmentObject> rodsAndBalls(std::uint64_t seed) {
       o.primitive = Cylinder{i % 2 == 0 ? 0.012 : 0.012 + 0.04 * std::abs(u(rng)),
                              0.1 + 0.5 * std::abs(u(rng))};
     }
-    if (i % 3 != 0) {
-      o.X_WO.linear() = Eigen::Quaterniond(u(rng), u(rng), u(rng), u(rng)).normalized().matrix();
-    }
-    o.X_WO.translation() = 0.4 * Eigen::Vector3d(u(rng), u(rng), u(rng));
+    placeAtRandom(o, rng, i % 3 != 0);
     objects.push_back(o);
   }
   EnvironmentObject pole;
