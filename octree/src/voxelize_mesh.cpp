@@ -242,6 +242,7 @@ class MeshDescent {
         caster_(caster),
         conservative_(caster == nullptr || rounding == Rounding::kConservative),
         shrink_(conservative_ ? 0.0 : 0.5),
+        side_voxels_(std::ldexp(1.0, depth)),
         lists_(static_cast<std::size_t>(depth) + 1) {}
 
   Octree build(const WorldGrid& grid) {
@@ -297,6 +298,34 @@ class MeshDescent {
     }
   }
 
+  // Whether triangle t, which grazes voxel v without reaching into it, is held by a black voxel
+  // next to v. t lies beyond some of v's faces (within the tie), so its part of v's closure lies
+  // on the face, edge or corner where those face planes meet, and every voxel around that part
+  // holds it in its closure; one of them inside the universe with its centre in the solid is
+  // black.
+  bool coveredAcross(const GridTriangle& t, const Cube& v) const {
+    if (caster_ == nullptr) return false;
+    const double tol = kFaceTie + kInternalMargin;
+    const Eigen::Vector3d lo(v.origin.x, v.origin.y, v.origin.z);
+    int step[3] = {0, 0, 0};
+    for (int axis = 0; axis < 3; ++axis) {
+      if (t.lo[axis] >= lo[axis] + 1.0 - tol) step[axis] = 1;
+      if (t.hi[axis] <= lo[axis] + tol) step[axis] = -1;
+    }
+    for (int axes = 1; axes < 8; ++axes) {
+      Eigen::Vector3d across = lo + Eigen::Vector3d::Constant(0.5);
+      bool around = true;
+      for (int axis = 0; axis < 3 && around; ++axis) {
+        if ((axes >> axis & 1) == 0) continue;
+        around = step[axis] != 0;
+        across[axis] += step[axis];
+        around &= across[axis] > 0.0 && across[axis] < side_voxels_;
+      }
+      if (around && caster_->inside(across)) return true;
+    }
+    return false;
+  }
+
   // A voxel of the level-1 cube whose centre is `middle` (status `middle_status`), given the
   // triangles that touch the cube's test box.
   bool voxel(const Cube& v, const std::vector<std::uint32_t>& candidates,
@@ -304,18 +333,27 @@ class MeshDescent {
     const Eigen::Vector3d centre(v.origin.x + 0.5, v.origin.y + 0.5, v.origin.z + 0.5);
     if (conservative_) {
       // A triangle reaching into the voxel (kFaceTie) makes it black. An untouched voxel takes
-      // the status of the middle, one of its corners, unless a triangle passes within rounding
-      // of it or only touches its boundary (then ask from the voxel's centre: a voxel inside a
-      // face that lies on its boundary is inside the solid, one outside it is not).
-      bool grazed = false;
+      // the status of the middle, one of its corners. A voxel some triangle only grazes (it
+      // passes within kFaceTie of the boundary, e.g. a face lying on a voxel face) is black when
+      // its centre is in the solid, and also when a grazing triangle is not covered by the
+      // closed voxel across the face it lies on (coveredAcross): the surface itself must always
+      // lie in a closed black voxel, also where parity sees no inside on either side of it (a
+      // double-sided sheet, an open mesh).
+      grazers_.clear();
       for (std::uint32_t i : candidates) {
         const int level =
             touchLevel(triangles_[i], centre, 0.5 - kFaceTie, kFaceTie + kInternalMargin);
         if (level == 2) return true;
-        grazed |= level == 1;
+        if (level == 1) grazers_.push_back(i);
       }
-      if (caster_ == nullptr) return false;
-      return grazed ? caster_->inside(centre) : middle_status.inside(*caster_, middle);
+      if (grazers_.empty()) {
+        return caster_ != nullptr && middle_status.inside(*caster_, middle);
+      }
+      if (caster_ != nullptr && caster_->inside(centre)) return true;
+      for (std::uint32_t i : grazers_) {
+        if (!coveredAcross(triangles_[i], v)) return true;
+      }
+      return false;
     }
     for (std::uint32_t i : candidates) {
       if (touches(triangles_[i], centre, 0.0)) return true;  // on the surface counts
@@ -379,7 +417,9 @@ class MeshDescent {
   const ParityCaster* caster_;
   bool conservative_;
   double shrink_;
+  double side_voxels_;
   std::vector<std::vector<std::uint32_t>> lists_;  // scratch candidate list per level
+  mutable std::vector<std::uint32_t> grazers_;     // scratch of voxel()
 };
 
 }  // namespace
