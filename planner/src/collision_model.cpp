@@ -12,7 +12,7 @@
 #include <system_error>
 #include <thread>
 
-#include "collision_meshes.h"
+#include "octomotion/planner/collision_meshes.h"
 #include "octomotion/motion/box_overlap.h"
 #include "octomotion/motion/collides.h"
 #include "octomotion/motion/move_tree.h"
@@ -185,12 +185,30 @@ OctreeCollisionModel::LinkVoxels OctreeCollisionModel::voxelizeLink(
   LinkVoxels v;
   v.source_diagonal = std::sqrt(3.0) * grid.voxelSize();
   // Bounding sphere of the black voxels (centre: middle of their box).
+  Eigen::AlignedBox3d black_L;
   if (const auto b = source.bounds()) {
-    const Eigen::Vector3d lo = grid.cubeMin(Cube{0, b->min});
-    const Eigen::Vector3d hi = grid.cubeMax(Cube{0, b->max});
-    v.center_L = (lo + hi) / 2;
-    v.half_L = (hi - lo) / 2;
-    v.radius = (hi - lo).norm() / 2;
+    black_L = Eigen::AlignedBox3d(grid.cubeMin(Cube{0, b->min}), grid.cubeMax(Cube{0, b->max}));
+    v.center_L = black_L.center();
+    v.half_L = black_L.sizes() / 2;
+    v.radius = black_L.sizes().norm() / 2;
+  }
+  // The tree must hold the whole link: every mesh vertex within its black voxels' box (up to the
+  // builders' tie). The grid was fitted to the link, so a failure here is a defect, reported
+  // instead of a link that silently lost part of itself.
+  if (options.rounding == Rounding::kConservative) {
+    const double tie = 1e-5 * grid.voxelSize();
+    for (std::size_t k = 0; k < link.collision.size(); ++k) {
+      if (element_mesh[k] == nullptr) continue;
+      for (const Eigen::Vector3d& p : element_mesh[k]->vertices) {
+        const Eigen::Vector3d p_L = link.collision[k].X_LE * p;
+        if (black_L.isEmpty() || (p_L.array() < black_L.min().array() - tie).any() ||
+            (p_L.array() > black_L.max().array() + tie).any()) {
+          throw Error("link '" + link.name + "': its source tree (" +
+                      std::to_string(grid.voxelSize()) + " m voxels) does not hold its collision "
+                      "geometry (a vertex of element " + std::to_string(k) + " lies outside)");
+        }
+      }
+    }
   }
   if (!for_self_pairs && options.core_boxes && options.rounding == Rounding::kConservative) {
     const double shrink = kSolidShrink * std::max(resolution, options.resolution);
@@ -268,7 +286,7 @@ OctreeCollisionModel::OctreeCollisionModel(RobotModel robot, const EnvironmentGe
   report_.self_link_resolution = self_res;
 
   // 1. Each link's geometry in its own frame (meshes loaded once), and its extent.
-  detail::CollisionMeshes meshes(options.keep_mesh_root_transform, options.center_mesh_vertices);
+  CollisionMeshes meshes(options.keep_mesh_root_transform, options.center_mesh_vertices);
   const int n_links = robot_.linkCount();
   const auto n = static_cast<std::size_t>(n_links);
   std::vector<Eigen::AlignedBox3d> boxes_L(n);

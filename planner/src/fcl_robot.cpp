@@ -14,7 +14,7 @@
 #include <fcl/narrowphase/collision.h>
 #include <fcl/narrowphase/distance.h>
 
-#include "collision_meshes.h"
+#include "octomotion/planner/collision_meshes.h"
 
 namespace octomotion::fcl_internal {
 
@@ -65,7 +65,7 @@ bool collidePair(const fcl::CollisionObjectd& a, const fcl::CollisionObjectd& b,
 
 RobotGeometry::RobotGeometry(const RobotModel& robot, bool keep_mesh_root_transform,
                              bool center_mesh_vertices) {
-  detail::CollisionMeshes meshes(keep_mesh_root_transform, center_mesh_vertices);
+  CollisionMeshes meshes(keep_mesh_root_transform, center_mesh_vertices);
   std::map<const TriangleMesh*, Geom> geoms;  // one FCL model per loaded mesh
   std::vector<std::vector<int>> link_elements(static_cast<std::size_t>(robot.linkCount()));
   for (int l = 0; l < robot.linkCount(); ++l) {

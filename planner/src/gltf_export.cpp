@@ -14,7 +14,7 @@
 #include <assimp/scene.h>
 #include <assimp/Exporter.hpp>
 
-#include "collision_meshes.h"
+#include "octomotion/planner/collision_meshes.h"
 #include "octomotion/error.h"
 #include "octomotion/motion/move_tree.h"
 #include "octomotion/octree/mesh.h"
@@ -103,7 +103,7 @@ TriangleMesh primitiveMesh(const Primitive& p) {
 }
 
 // The link's collision elements as one mesh in its frame L.
-MeshBuffer linkMesh(const Link& link, detail::CollisionMeshes& meshes) {
+MeshBuffer linkMesh(const Link& link, CollisionMeshes& meshes) {
   MeshBuffer buffer;
   for (const CollisionElement& e : link.collision) {
     if (const auto* p = std::get_if<Primitive>(&e.geometry)) {
@@ -486,7 +486,7 @@ GltfExportReport exportGlb(const OctreeCollisionModel& model, const std::vector<
     std::vector<std::unique_ptr<aiNode>> children;
     materials.push_back(makeMaterial("robot", kRobotColor));
     const auto robot_material = static_cast<unsigned>(materials.size() - 1);
-    detail::CollisionMeshes robot_meshes(options.keep_mesh_root_transform,
+    CollisionMeshes robot_meshes(options.keep_mesh_root_transform,
                                          options.center_mesh_vertices);
     for (int i = 0; i < robot.linkCount(); ++i) {
       const Link& link = robot.link(i);

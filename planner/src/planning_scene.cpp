@@ -23,7 +23,7 @@
 #include <ompl/geometric/planners/sbl/SBL.h>
 #include <ompl/util/RandomNumbers.h>
 
-#include "collision_meshes.h"
+#include "octomotion/planner/collision_meshes.h"
 #include "octomotion/octree/mesh.h"
 #include "octomotion/planner/octree_validity_checker.h"
 
@@ -47,7 +47,7 @@ Eigen::AlignedBox3d robotGeometryBox(const RobotModel& robot) {
   robot.forwardKinematics(q.data(), q.size(), data);
   Eigen::AlignedBox3d box;
   // A size estimate: the files' meshes as stored (no root transform, not centred).
-  detail::CollisionMeshes meshes(false, false);
+  CollisionMeshes meshes(false, false);
   for (int l = 0; l < robot.linkCount(); ++l) {
     for (const CollisionElement& e : robot.link(l).collision) {
       const Eigen::Isometry3d X = data.linkPose(l) * e.X_LE;

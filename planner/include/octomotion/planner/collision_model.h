@@ -286,11 +286,16 @@ class OctreeCollisionModel {
   struct LinkSourceTree {
     int link = -1;                   // index in robot().links()
     const Octree* source = nullptr;  // owned by the model
+    // The self pairs' tree when it has its own resolution (self_link_resolution), else null.
+    const Octree* self_source = nullptr;
   };
   std::vector<LinkSourceTree> linkSourceTrees() const {
     std::vector<LinkSourceTree> trees;
     trees.reserve(links_.size());
-    for (const LinkTree& lt : links_) trees.push_back({lt.link, &lt.voxels.source});
+    for (const LinkTree& lt : links_) {
+      trees.push_back(
+          {lt.link, &lt.voxels.source, lt.self_voxels ? &lt.self_voxels->source : nullptr});
+    }
     return trees;
   }
 

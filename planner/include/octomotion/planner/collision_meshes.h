@@ -1,7 +1,8 @@
 // A robot's collision meshes as a scene asks for them (the file's root transform kept or not,
 // vertices centred on their mean or not — OMPL.app's convention), each (file, scale) loaded once.
-// Every model built from a RobotModel (octree, FCL, glTF export, bounding boxes) reads its meshes
-// through this, so they all see the same geometry.
+// The one loader of a robot's geometry: every model built from a RobotModel (octree, FCL, glTF
+// export, bounding boxes) reads its meshes through this, so they all see the same triangles in
+// the same frame, and tests read them the same way to check what a model made of them.
 #pragma once
 
 #include <array>
@@ -12,7 +13,7 @@
 #include "octomotion/octree/mesh.h"
 #include "octomotion/planner/robot_model.h"
 
-namespace octomotion::detail {
+namespace octomotion {
 
 class CollisionMeshes {
  public:
@@ -42,4 +43,4 @@ class CollisionMeshes {
   std::map<Key, TriangleMesh> meshes_;
 };
 
-}  // namespace octomotion::detail
+}  // namespace octomotion
