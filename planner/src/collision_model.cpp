@@ -162,6 +162,10 @@ std::vector<Eigen::Vector4d> clearanceSpheres(const Octree& source) {
   return spheres;
 }
 
+// The same objects voxelized again (on a shifted grid, or apart from the primitives) warn of
+// nothing new; an empty WarningSink would print to stderr.
+const WarningSink kIgnoreWarnings = [](const std::string&) {};
+
 }  // namespace
 
 // A link's collision elements voxelized in its frame at `resolution` (box_L: their extent).
@@ -423,7 +427,7 @@ OctreeCollisionModel::OctreeCollisionModel(RobotModel robot, const EnvironmentGe
       const WorldGrid shifted(origin, options.resolution, grid.depth());
       EnvironmentReport candidate_report;
       Octree candidate =
-          environment.voxelize(shifted, options.rounding, &candidate_report, WarningSink{});
+          environment.voxelize(shifted, options.rounding, &candidate_report, kIgnoreWarnings);
       if (candidate.internalNodeCount() < environment_.internalNodeCount()) {
         environment_ = std::move(candidate);
         report_.environment = std::move(candidate_report);
@@ -472,7 +476,7 @@ OctreeCollisionModel::OctreeCollisionModel(RobotModel robot, const EnvironmentGe
     const EnvironmentGeometry others = environment.withoutPrimitives();
     if (others.size() > 0) {
       auto v = std::make_unique<VoxelObjects>(
-          VoxelObjects{others.voxelize(grid, Rounding::kConservative, nullptr, WarningSink{}),
+          VoxelObjects{others.voxelize(grid, Rounding::kConservative, nullptr, kIgnoreWarnings),
                        nullptr, nullptr});
       v->cells = std::make_unique<const BlackCellGrid>(v->tree);
       v->clearance = std::make_unique<const ClearanceGrid>(v->tree);
