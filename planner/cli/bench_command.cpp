@@ -71,7 +71,8 @@ void writeFile(const std::string& path, const std::function<void(std::ostream&)>
   std::ofstream out(path);
   if (!out) throw FileError(path, "cannot write");
   write(out);
-  if (!out) throw FileError(path, "write failed");
+  out.close();  // a full disk shows when the buffer is flushed
+  if (!out) throw FileError(path, "write error (disk full?)");
 }
 
 }  // namespace

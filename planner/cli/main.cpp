@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <map>
 #include <sstream>
 #include <string>
@@ -16,6 +17,7 @@
 
 #include "commands.h"
 #include "octomotion/error.h"
+#include "octomotion/input_limits.h"
 #include "octomotion/planner/octree_validity_checker.h"
 #include "octomotion/planner/planning_scene.h"
 
@@ -122,6 +124,8 @@ int plan(const Args& a) {
     std::ofstream out(a.out);
     if (!out) throw FileError(a.out, "cannot write the path");
     writePath(scene, *r.path, out);
+    out.close();  // a full disk shows when the buffer is flushed
+    if (!out) throw FileError(a.out, "write error (disk full?): the path was not written");
     std::cerr << "octomotion: path written to " << a.out << "\n";
   }
   return 0;
@@ -141,6 +145,8 @@ std::vector<std::string> splitCsv(const std::string& line) {
 int check(const Args& a) {
   PlanningScene scene = load(a);
   const RobotModel& robot = scene.model->robot();
+  // Read line by line, so only the regular-file check matters (a FIFO would block).
+  requireRegularFile(a.states, "states file", std::numeric_limits<std::uintmax_t>::max());
   std::ifstream in(a.states);
   if (!in) throw FileError(a.states, "cannot open the states file");
   std::string line;
@@ -232,13 +238,15 @@ int main(int argc, char** argv) {
     if (argc >= 2 && (std::string(argv[1]) == "bench" || std::string(argv[1]) == "view")) {
       ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
       const std::vector<std::string> rest(argv + 2, argv + argc);
-      return std::string(argv[1]) == "bench" ? cli::benchCommand(rest) : cli::viewCommand(rest);
+      return cli::finishStdout(std::string(argv[1]) == "bench" ? cli::benchCommand(rest)
+                                                               : cli::viewCommand(rest));
     }
     const Args args = parseArgs(argc, argv);
     ompl::msg::setLogLevel(args.verbose ? ompl::msg::LOG_INFO : ompl::msg::LOG_WARN);
-    if (args.command == "plan") return plan(args);
-    if (args.command == "check") return check(args);
-    return info(args);
+    const int status = args.command == "plan"    ? plan(args)
+                       : args.command == "check" ? check(args)
+                                                 : info(args);
+    return cli::finishStdout(status);
   } catch (const std::exception& e) {
     std::cerr << "octomotion: error: " << e.what() << "\n";
     return 1;
