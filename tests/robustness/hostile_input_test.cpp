@@ -275,6 +275,47 @@ TEST_F(HostileInput, StartOrGoalOutsideBoundsOrLimitsIsRefusedAtLoad) {
   EXPECT_THAT(err, HasSubstr("joint 'j1' = 1.25"));
 }
 
+struct CliResult {
+  int status;
+  std::string out, err;
+};
+
+CliResult runCli(const fs::path& dir, const std::string& args, const std::string& stdout_to = "") {
+  const std::string out_path = stdout_to.empty() ? (dir / "stdout").string() : stdout_to;
+  const std::string err_path = (dir / "stderr").string();
+  const int raw = std::system(
+      (std::string(OCTOMOTION_CLI) + " " + args + " >" + out_path + " 2>" + err_path).c_str());
+  auto slurp = [](const std::string& path) {
+    std::ifstream in(path);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+  };
+  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, stdout_to.empty() ? slurp(out_path) : "",
+          slurp(err_path)};
+}
+
+// D1, continued: a start in collision ended in "no solution" after the whole time limit. `plan`
+// says so at once (naming the colliding pair needs an explain API, not there yet).
+TEST_F(HostileInput, StartInCollisionIsSaidAtOnce) {
+  std::string text;
+  {
+    std::ifstream in(freeFlyingScene());
+    std::stringstream s;
+    s << in.rdbuf();
+    text = s.str();
+  }
+  const std::string from = "start: {xyz: [-0.5, 0, 0]}";
+  text.replace(text.find(from), from.size(), "start: {xyz: [0, 0.8, 0]}");  // inside the post
+  const std::string scene = write("start_in_post.yaml", text + "  time: 60\n");
+  const auto t0 = std::chrono::steady_clock::now();
+  const CliResult r = runCli(dir_, "plan " + scene);
+  EXPECT_LT(std::chrono::steady_clock::now() - t0, std::chrono::seconds(20));
+  EXPECT_EQ(r.status, 1);
+  EXPECT_THAT(r.err, HasSubstr("start_in_post.yaml: problem.start is in collision"));
+  EXPECT_THAT(r.err, HasSubstr("finer --resolution"));
+}
+
 // D17: a .cfg volume without volume.min.x dropped the five other volume keys silently.
 TEST_F(HostileInput, CfgVolumeMustBeWholeOrAbsent) {
   const std::string problem =
@@ -321,26 +362,6 @@ TEST_F(HostileInput, InterpolationSpacingCannotOverflowTheStateCount) {
   const std::string what = errorOf([&] { plan(again, 1e-9); });
   EXPECT_THAT(what, HasSubstr("interpolation"));
   EXPECT_THAT(what, HasSubstr("1e-09"));
-}
-
-struct CliResult {
-  int status;
-  std::string out, err;
-};
-
-CliResult runCli(const fs::path& dir, const std::string& args, const std::string& stdout_to = "") {
-  const std::string out_path = stdout_to.empty() ? (dir / "stdout").string() : stdout_to;
-  const std::string err_path = (dir / "stderr").string();
-  const int raw = std::system(
-      (std::string(OCTOMOTION_CLI) + " " + args + " >" + out_path + " 2>" + err_path).c_str());
-  auto slurp = [](const std::string& path) {
-    std::ifstream in(path);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-  };
-  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, stdout_to.empty() ? slurp(out_path) : "",
-          slurp(err_path)};
 }
 
 // D15, D7: --seed 1e30 became seed 1 (an out-of-range cast) and --time 9e9 gave up at once
