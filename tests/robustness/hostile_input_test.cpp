@@ -407,7 +407,10 @@ std::string errorWithin(std::chrono::seconds limit, const std::function<void()>&
   auto future = std::async(std::launch::async, [&] { return errorOf(call); });
   if (future.wait_for(limit) == std::future_status::ready) return future.get();
   ADD_FAILURE() << "no answer within " << limit.count() << " s";
-  if (unblock) unblock();
+  // A reader blocked on a FIFO may open it again after each unblocking: keep unblocking.
+  while (unblock && future.wait_for(std::chrono::milliseconds(100)) != std::future_status::ready) {
+    unblock();
+  }
   return future.get();
 }
 
