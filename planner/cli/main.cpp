@@ -106,7 +106,8 @@ PlanningScene load(const Args& a) {
 }
 
 // A start or goal in collision can only end in "no solution" after the whole time limit: say so
-// at once. (Which pair collides, and whether only the voxel margin does, needs an explain API.)
+// at once, and whether exact geometry (FCL) agrees or only the voxels' margin collides. (Which
+// pair collides needs an explain API.)
 void requireFreeStartAndGoal(const PlanningScene& scene) {
   const auto& pdef = scene.setup->getProblemDefinition();
   const auto* goal = pdef->getGoal()->as<ompl::base::GoalState>();
@@ -121,10 +122,14 @@ void requireFreeStartAndGoal(const PlanningScene& scene) {
     what << (cfg ? "[problem] " + std::string(which) + ".*" : "problem." + std::string(which))
          << " is in collision for the " << scene.checker << " checker at a resolution of "
          << *scene.spec.octree.resolution << " m";
-    if (scene.checker.rfind("octree", 0) == 0 &&
-        scene.spec.octree.rounding == Rounding::kConservative) {
-      what << " (conservative voxels add up to a voxel's margin: a finer --resolution, or "
-              "--checker fcl, shows whether only the margin collides)";
+    if (scene.checker != "fcl") {
+      const FclValidityChecker exact(scene.setup->getSpaceInformation(), scene.fcl_model);
+      if (exact.isValid(state)) {
+        what << "; FCL (exact) finds it free, so only the voxels' margin collides: a finer "
+                "--resolution (or --link-resolution) should accept it";
+      } else {
+        what << "; FCL (exact) agrees";
+      }
     }
     throw FileError(scene.spec.path, what.str());
   }

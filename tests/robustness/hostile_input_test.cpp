@@ -306,14 +306,22 @@ TEST_F(HostileInput, StartInCollisionIsSaidAtOnce) {
     text = s.str();
   }
   const std::string from = "start: {xyz: [-0.5, 0, 0]}";
-  text.replace(text.find(from), from.size(), "start: {xyz: [0, 0.8, 0]}");  // inside the post
+  const std::string into_post = "start: {xyz: [0, 0.78, 0]}";  // 8 cm deep into the post
+  text.replace(text.find(from), from.size(), into_post);
   const std::string scene = write("start_in_post.yaml", text + "  time: 60\n");
   const auto t0 = std::chrono::steady_clock::now();
   const CliResult r = runCli(dir_, "plan " + scene);
   EXPECT_LT(std::chrono::steady_clock::now() - t0, std::chrono::seconds(20));
   EXPECT_EQ(r.status, 1);
   EXPECT_THAT(r.err, HasSubstr("start_in_post.yaml: problem.start is in collision"));
-  EXPECT_THAT(r.err, HasSubstr("finer --resolution"));
+  EXPECT_THAT(r.err, HasSubstr("FCL (exact) agrees"));
+  // 1 mm from the post (whose face is at y = 0.75): free for FCL, but within the margin of
+  // 20 cm voxels.
+  text.replace(text.find(into_post), into_post.size(), "start: {xyz: [0, 0.699, 0]}");
+  const std::string near = write("start_near_post.yaml", text);
+  const CliResult margin = runCli(dir_, "plan " + near + " --resolution 0.2 --link-resolution 0.2");
+  EXPECT_EQ(margin.status, 1);
+  EXPECT_THAT(margin.err, HasSubstr("only the voxels' margin collides: a finer --resolution"));
 }
 
 // D17: a .cfg volume without volume.min.x dropped the five other volume keys silently.
