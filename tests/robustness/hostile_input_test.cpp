@@ -23,6 +23,7 @@
 
 #include "octomotion/error.h"
 #include "octomotion/octree/mesh.h"
+#include "octomotion/planner/gltf_export.h"
 #include "octomotion/planner/octree_validity_checker.h"
 #include "octomotion/planner/package_locator.h"
 #include "octomotion/planner/planning_scene.h"
@@ -210,6 +211,14 @@ TEST_F(HostileInput, HugeQuaternionAndAxisComponentsNormaliseWithoutOverflow) {
   const RobotModel robot = RobotModel::fromUrdfString(urdf, "huge_axis.urdf", ".");
   EXPECT_TRUE(robot.joint(robot.jointIndex("j1")).axis.isApprox(Eigen::Vector3d::UnitZ(), 1e-15))
       << robot.joint(robot.jointIndex("j1")).axis.transpose();
+  // ... and in a path file's quaternion (x y z qx qy qz qw).
+  CollisionElement ball;
+  ball.geometry = Primitive{Sphere{0.1}};
+  const RobotModel body = RobotModel::rigidBody("ball", {ball});
+  std::istringstream path_text("1 2 3 1e200 1e200 0 0\n");
+  const std::vector<RobotState> path = readPath(body, path_text, "huge.path");
+  ASSERT_EQ(path.size(), 1u);
+  EXPECT_TRUE(path[0].X_WB.linear().isApprox(half_turn, 1e-12)) << path[0].X_WB.linear();
 }
 
 // D1: a start or goal outside the bounds or the joint limits was accepted (`plan` printed
