@@ -128,6 +128,9 @@ int benchCommand(const std::vector<std::string>& args) {
         if (colon != std::string::npos) {
           planner.time = parseNumber(arg, p.substr(colon + 1));
           if (!(planner.time > 0)) throw InvalidArgument("--planners: " + p + ": time must be > 0");
+          if (planner.time > kMaxPlanningSeconds) {
+            throw InvalidArgument("--planners: " + p + ": " + planningTimeTooLong(planner.time));
+          }
         }
         options.planners.push_back(planner);
       }

@@ -394,6 +394,9 @@ TEST_F(HostileInput, SeedAndTimeOutOfRangeAreRefused) {
     EXPECT_THAT(r.err, HasSubstr(says)) << args;
   }
   EXPECT_EQ(runCli(dir_, "info " + scene + " --seed 9000000000000000 --time 1e6").status, 0);
+  const CliResult bench = runCli(dir_, "bench " + scene + " --planners RRTConnect:9e9");
+  EXPECT_EQ(bench.status, 1);
+  EXPECT_THAT(bench.err, HasSubstr("--planners: RRTConnect:9e9: 9e+09 s is more than the limit"));
   EXPECT_THAT(
       errorOf([] { parseSceneYaml("robot: {mesh: a}\nproblem: {time: 9e9}\n", "/s/t.yaml"); }),
       HasSubstr("problem.time: 9e+09 s is more than the limit"));
