@@ -241,10 +241,12 @@ PlanningScene loadPlanningScene(const std::string& scene_path, const SceneOverri
     spec.octree.resolution = autoResolution(*robot, scene_box, robot_diagonal);
     resolution_field += " auto";
     if (!(std::isfinite(*spec.octree.resolution) && *spec.octree.resolution > 0)) {
-      throw FileError(spec.path, resolution_field + ": the robot and the scene have no extent to " +
-                                     "derive a voxel size from (robot diagonal " +
-                                     shortNumber(robot_diagonal) +
-                                     " m); give the resolution in metres");
+      throw FileError(spec.path,
+                      resolution_field + ": the scene's extent (diagonal " +
+                          shortNumber(scene_box.isEmpty() ? 0.0 : scene_box.diagonal().norm()) +
+                          " m) and the robot's (diagonal " + shortNumber(robot_diagonal) +
+                          " m) give " + shortNumber(*spec.octree.resolution) +
+                          " m, not a voxel size; give the resolution in metres");
     }
   }
 
@@ -422,10 +424,11 @@ PlanResult planWithOmpl(PlanningScene& scene, double interpolation) {
     const double length = result.path->length();
     const double states = std::ceil(length / interpolation) + 1;
     if (!(states <= kMaxPathStates)) {
-      throw InvalidArgument("interpolation: a spacing of " + shortNumber(interpolation) +
-                            " along a path of length " + shortNumber(length) + " needs " +
-                            shortNumber(states) + " states, more than the limit of " +
-                            shortNumber(kMaxPathStates) + "; give a larger spacing");
+      throw InvalidArgument(scene.spec.path + ": interpolation (--interpolation): a spacing of " +
+                            shortNumber(interpolation) + " along a path of length " +
+                            shortNumber(length) + " needs " + shortNumber(states) +
+                            " states, more than the limit of " + shortNumber(kMaxPathStates) +
+                            "; give a larger spacing");
     }
     result.path->interpolate(static_cast<unsigned>(states));
   } else {

@@ -377,8 +377,7 @@ TEST_F(HostileInput, InterpolationSpacingCannotOverflowTheStateCount) {
   EXPECT_EQ(result.path->getStateCount(), static_cast<std::size_t>(std::ceil(length / 0.01)) + 1);
   PlanningScene again = loadPlanningScene(freeFlyingScene());
   const std::string what = errorOf([&] { plan(again, 1e-9); });
-  EXPECT_THAT(what, HasSubstr("interpolation"));
-  EXPECT_THAT(what, HasSubstr("1e-09"));
+  EXPECT_THAT(what, HasSubstr("free.yaml: interpolation (--interpolation): a spacing of 1e-09"));
 }
 
 // D15, D7: --seed 1e30 became seed 1 (an out-of-range cast) and --time 9e9 gave up at once
@@ -632,7 +631,7 @@ TEST_F(HostileInput, MessagesNameTheFieldAndTheFile) {
   automatic.auto_resolution = true;
   what = errorOf([&] { loadPlanningScene(vast, automatic); });
   EXPECT_THAT(what, HasSubstr("free.yaml"));
-  EXPECT_THAT(what, HasSubstr("octree.resolution auto"));
+  EXPECT_THAT(what, HasSubstr("octree.resolution auto: the scene's extent (diagonal inf m)"));
 
   // A .cfg with `robot =` empty named its directory.
   const std::string cfg_tail =
