@@ -273,7 +273,8 @@ PlanningScene loadPlanningScene(const std::string& scene_path, const SceneOverri
     scene.model =
         std::make_shared<const OctreeCollisionModel>(std::move(*robot), environment, options);
   } catch (const InvalidArgument& e) {
-    throw InvalidArgument(spec.path + ": " + resolution_field + " " +
+    // Most model errors depend on the resolution (depth, memory guard): say where it came from.
+    throw InvalidArgument(spec.path + ": at " + resolution_field + " " +
                           shortNumber(options.resolution) + " m: " + e.what());
   }
   // The references, lazily: they keep the octree model (for its robot) and the objects alive.
