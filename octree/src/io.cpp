@@ -9,6 +9,7 @@
 #include <ostream>
 
 #include "octomotion/error.h"
+#include "octomotion/input_limits.h"
 
 namespace octomotion {
 
@@ -252,6 +253,7 @@ void saveOctree(const Octree& tree, const std::string& path) {
 }
 
 Octree loadOctree(const std::string& path) {
+  requireRegularFile(path, "octree file", kMaxDataFileBytes);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw FileError(path, std::string("cannot open: ") + std::strerror(errno));
   Octree tree = readOctree(in, path);

@@ -1,5 +1,6 @@
 #include "octomotion/octree/mesh.h"
 
+#include <cctype>
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -12,6 +13,7 @@
 
 #include "mesh_internal.h"
 #include "octomotion/error.h"
+#include "octomotion/input_limits.h"
 
 namespace octomotion {
 namespace {
@@ -67,6 +69,23 @@ struct PositionEqual {
   bool operator()(const Eigen::Vector3d& a, const Eigen::Vector3d& b) const { return a == b; }
 };
 
+// assimp's Collada (and other XML) importers recurse once per nested element, so a deeply
+// nested file overflows the stack: XML mesh files are pre-scanned for their nesting depth.
+void requireShallowXml(const std::string& path, std::uintmax_t max_bytes) {
+  char head[64] = {};
+  {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw FileError(path, "cannot open mesh file");
+    in.read(head, sizeof head);
+  }
+  std::size_t i = 0;
+  if (std::strncmp(head, "\xEF\xBB\xBF", 3) == 0) i = 3;  // a UTF-8 byte-order mark
+  while (i < sizeof head && std::isspace(static_cast<unsigned char>(head[i]))) ++i;
+  if (i < sizeof head && head[i] == '<') {
+    requireXmlDepth(readWholeFile(path, "mesh file", max_bytes), path);
+  }
+}
+
 }  // namespace
 
 TriangleMesh loadMesh(const std::string& path, const MeshLoadOptions& options) {
@@ -75,10 +94,8 @@ TriangleMesh loadMesh(const std::string& path, const MeshLoadOptions& options) {
     throw InvalidArgument("loadMesh: MeshLoadOptions.scale must be finite and non-zero (" + path +
                           ")");
   }
-  {
-    std::ifstream probe(path, std::ios::binary);
-    if (!probe) throw FileError(path, "cannot open mesh file");
-  }
+  requireRegularFile(path, "mesh file", options.max_file_bytes);
+  requireShallowXml(path, options.max_file_bytes);
   Assimp::Importer importer;
   // Only triangles matter; drop point and line primitives instead of failing on them.
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE,

@@ -14,6 +14,7 @@
 #include <memory>
 #include <sstream>
 
+#include "octomotion/input_limits.h"
 #include "octomotion/octree/octree_builder.h"
 
 namespace octomotion {
@@ -50,11 +51,8 @@ bool nextLine(const std::string& s, std::size_t* pos, std::string* line) {
 // Checks the whole file before liboctomap sees it: its binary reader trusts the bit stream (it
 // reads past the end and recurses as deep as the bits say), so only well-formed data reaches it.
 BtFile readBtFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw FileError(path, std::string("cannot open: ") + std::strerror(errno));
   BtFile file;
-  file.bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-  if (in.bad()) throw FileError(path, "read error");
+  file.bytes = readWholeFile(path, "OctoMap file", kMaxDataFileBytes);
   const std::string& s = file.bytes;
 
   std::size_t pos = 0;

@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "octomotion/error.h"
+#include "octomotion/input_limits.h"
 #include "octomotion/pointcloud/point_cloud_io.h"
 
 namespace octomotion::pointcloud {
@@ -20,12 +21,7 @@ namespace octomotion::pointcloud {
 namespace {
 
 std::string readWhole(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw FileError(path, "cannot open file");
-  std::ostringstream s;
-  s << in.rdbuf();
-  if (in.bad()) throw FileError(path, "read error");
-  return s.str();
+  return readWholeFile(path, "point cloud file", kMaxDataFileBytes);
 }
 
 // Sequential line reader over a buffer; tracks the byte offset and the 1-based line number.

@@ -71,7 +71,8 @@ void writeFile(const std::string& path, const std::function<void(std::ostream&)>
   std::ofstream out(path);
   if (!out) throw FileError(path, "cannot write");
   write(out);
-  if (!out) throw FileError(path, "write failed");
+  out.close();  // a full disk shows when the buffer is flushed
+  if (!out) throw FileError(path, "write error (disk full?)");
 }
 
 }  // namespace
@@ -127,6 +128,9 @@ int benchCommand(const std::vector<std::string>& args) {
         if (colon != std::string::npos) {
           planner.time = parseNumber(arg, p.substr(colon + 1));
           if (!(planner.time > 0)) throw InvalidArgument("--planners: " + p + ": time must be > 0");
+          if (planner.time > kMaxPlanningSeconds) {
+            throw InvalidArgument("--planners: " + p + ": " + planningTimeTooLong(planner.time));
+          }
         }
         options.planners.push_back(planner);
       }

@@ -20,6 +20,10 @@ bool parseSceneOption(const std::string& arg, const std::function<std::string()>
                       SceneOverrides& overrides);
 
 // Loads a scene with warnings and the load time on stderr.
+// Flushes standard output and throws Error if anything written to it was lost (a full disk, a
+// closed pipe); returns `status` otherwise.
+int finishStdout(int status);
+
 PlanningScene loadSceneVerbose(const std::string& path, const SceneOverrides& overrides);
 
 // `octomotion bench SCENE ...`: the speed/accuracy trade study of one scene.

@@ -34,10 +34,15 @@ bool parseSceneOption(const std::string& arg, const std::function<std::string()>
   } else if (arg == "--time") {
     const double t = parseNumber(arg, value());
     if (!(t > 0)) throw InvalidArgument("--time: must be > 0");
+    if (t > kMaxPlanningSeconds) throw InvalidArgument("--time: " + planningTimeTooLong(t));
     overrides.time = t;
   } else if (arg == "--seed") {
-    const double s = parseNumber(arg, value());
-    if (s < 0 || s != std::floor(s)) throw InvalidArgument("--seed: expected an integer >= 0");
+    const std::string text = value();
+    const double s = parseNumber(arg, text);
+    if (s < 0 || s != std::floor(s) || s > kMaxSeed) {
+      // A larger double would not convert to the seed's integer type.
+      throw InvalidArgument("--seed: expected an integer from 0 to 9e15, got '" + text + "'");
+    }
     overrides.seed = static_cast<std::uint64_t>(s);
   } else if (arg == "--resolution") {
     const std::string v = value();
@@ -74,6 +79,12 @@ bool parseSceneOption(const std::string& arg, const std::function<std::string()>
     return false;
   }
   return true;
+}
+
+int finishStdout(int status) {
+  std::cout.flush();
+  if (!std::cout) throw Error("standard output: write error (disk full or closed?)");
+  return status;
 }
 
 PlanningScene loadSceneVerbose(const std::string& path, const SceneOverrides& overrides) {

@@ -6,16 +6,19 @@
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <map>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include <ompl/base/goals/GoalState.h>
 #include <ompl/base/spaces/SE3StateSpace.h>
 #include <ompl/util/Console.h>
 
 #include "commands.h"
 #include "octomotion/error.h"
+#include "octomotion/input_limits.h"
 #include "octomotion/planner/octree_validity_checker.h"
 #include "octomotion/planner/planning_scene.h"
 
@@ -102,11 +105,42 @@ PlanningScene load(const Args& a) {
   return cli::loadSceneVerbose(a.scene, a.overrides);
 }
 
+// A start or goal in collision can only end in "no solution" after the whole time limit: say so
+// at once, and whether exact geometry (FCL) agrees or only the voxels' margin collides. (Which
+// pair collides needs an explain API.)
+void requireFreeStartAndGoal(const PlanningScene& scene) {
+  const auto& pdef = scene.setup->getProblemDefinition();
+  const auto* goal = pdef->getGoal()->as<ompl::base::GoalState>();
+  const bool cfg = scene.spec.path.size() > 4 &&
+                   scene.spec.path.compare(scene.spec.path.size() - 4, 4, ".cfg") == 0;
+  const auto& checker = *scene.setup->getStateValidityChecker();
+  for (const auto& [state, which] :
+       {std::pair<const ompl::base::State*, const char*>{pdef->getStartState(0), "start"},
+        {goal->getState(), "goal"}}) {
+    if (checker.isValid(state)) continue;
+    std::ostringstream what;
+    what << (cfg ? "[problem] " + std::string(which) + ".*" : "problem." + std::string(which))
+         << " is in collision for the " << scene.checker << " checker at a resolution of "
+         << *scene.spec.octree.resolution << " m";
+    if (scene.checker != "fcl") {
+      const FclValidityChecker exact(scene.setup->getSpaceInformation(), scene.fcl_model);
+      if (exact.isValid(state)) {
+        what << "; FCL (exact) finds it free, so only the voxels' margin collides: a finer "
+                "--resolution (or --link-resolution) should accept it";
+      } else {
+        what << "; FCL (exact) agrees";
+      }
+    }
+    throw FileError(scene.spec.path, what.str());
+  }
+}
+
 int plan(const Args& a) {
   PlanningScene scene = load(a);
   if (!scene.spec.problem.start || !scene.spec.problem.goal) {
     throw FileError(a.scene, "problem: a start and a goal are needed to plan");
   }
+  requireFreeStartAndGoal(scene);
   std::cerr << "octomotion: planning with " << scene.spec.problem.planner << " for at most "
             << scene.spec.problem.time << " s\n";
   const PlanResult r = octomotion::plan(scene, a.interpolation);
@@ -122,6 +156,8 @@ int plan(const Args& a) {
     std::ofstream out(a.out);
     if (!out) throw FileError(a.out, "cannot write the path");
     writePath(scene, *r.path, out);
+    out.close();  // a full disk shows when the buffer is flushed
+    if (!out) throw FileError(a.out, "write error (disk full?): the path was not written");
     std::cerr << "octomotion: path written to " << a.out << "\n";
   }
   return 0;
@@ -141,6 +177,8 @@ std::vector<std::string> splitCsv(const std::string& line) {
 int check(const Args& a) {
   PlanningScene scene = load(a);
   const RobotModel& robot = scene.model->robot();
+  // Read line by line, so only the regular-file check matters (a FIFO would block).
+  requireRegularFile(a.states, "states file", std::numeric_limits<std::uintmax_t>::max());
   std::ifstream in(a.states);
   if (!in) throw FileError(a.states, "cannot open the states file");
   std::string line;
@@ -232,13 +270,15 @@ int main(int argc, char** argv) {
     if (argc >= 2 && (std::string(argv[1]) == "bench" || std::string(argv[1]) == "view")) {
       ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
       const std::vector<std::string> rest(argv + 2, argv + argc);
-      return std::string(argv[1]) == "bench" ? cli::benchCommand(rest) : cli::viewCommand(rest);
+      return cli::finishStdout(std::string(argv[1]) == "bench" ? cli::benchCommand(rest)
+                                                               : cli::viewCommand(rest));
     }
     const Args args = parseArgs(argc, argv);
     ompl::msg::setLogLevel(args.verbose ? ompl::msg::LOG_INFO : ompl::msg::LOG_WARN);
-    if (args.command == "plan") return plan(args);
-    if (args.command == "check") return check(args);
-    return info(args);
+    const int status = args.command == "plan"    ? plan(args)
+                       : args.command == "check" ? check(args)
+                                                 : info(args);
+    return cli::finishStdout(status);
   } catch (const std::exception& e) {
     std::cerr << "octomotion: error: " << e.what() << "\n";
     return 1;

@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <sstream>
 
 #include "octomotion/octree/octomap_io.h"
 #include "octomotion/octree/set_ops.h"
@@ -37,7 +38,9 @@ Eigen::AlignedBox3d octreeBounds(const Octree& tree) {
 
 WorldGrid fitGrid(const Eigen::AlignedBox3d& region_W, double resolution) {
   if (!(std::isfinite(resolution) && resolution > 0)) {
-    throw InvalidArgument("resolution must be finite and > 0, got " + std::to_string(resolution));
+    std::ostringstream what;
+    what << "resolution must be finite and > 0, got " << resolution;
+    throw InvalidArgument(what.str());
   }
   if (region_W.isEmpty() || !region_W.min().allFinite() || !region_W.max().allFinite()) {
     throw InvalidArgument("the region to model is empty or not finite");
@@ -46,9 +49,10 @@ WorldGrid fitGrid(const Eigen::AlignedBox3d& region_W, double resolution) {
   int depth = 1;
   while (depth <= kMaxDepth && std::ldexp(resolution, depth) < longest) ++depth;
   if (depth > kMaxDepth) {
-    throw InvalidArgument("resolution " + std::to_string(resolution) + " m over a region of " +
-                          std::to_string(longest) + " m needs more than " +
-                          std::to_string(kMaxDepth) + " octree levels; use a coarser resolution");
+    std::ostringstream what;  // %g: a 1e-9 m resolution must not print as 0.000000
+    what << "resolution " << resolution << " m over a region of " << longest
+         << " m needs more than " << kMaxDepth << " octree levels; use a coarser resolution";
+    throw InvalidArgument(what.str());
   }
   return WorldGrid(region_W.min(), resolution, depth);
 }

@@ -16,6 +16,7 @@
 
 #include "octomotion/planner/collision_meshes.h"
 #include "octomotion/error.h"
+#include "octomotion/input_limits.h"
 #include "octomotion/motion/move_tree.h"
 #include "octomotion/octree/mesh.h"
 
@@ -301,10 +302,10 @@ std::vector<RobotState> readPath(const RobotModel& robot, std::istream& in,
     }
     RobotState s;
     if (free) {
-      Eigen::Quaterniond r(values[6], values[3], values[4], values[5]);
-      if (!(r.norm() > 1e-9)) throw FileError(source_name, where + ": zero quaternion");
-      r.normalize();
-      s.X_WB.linear() = r.toRotationMatrix();
+      // Scaled: a plain norm of (1e200, 1e200, 0, 0) overflows and q / inf is no rotation.
+      const auto r = scaledUnitVector(Eigen::Vector4d(values[6], values[3], values[4], values[5]));
+      if (!r) throw FileError(source_name, where + ": zero quaternion");
+      s.X_WB.linear() = Eigen::Quaterniond((*r)[0], (*r)[1], (*r)[2], (*r)[3]).toRotationMatrix();
       s.X_WB.translation() = Eigen::Vector3d(values[0], values[1], values[2]);
     } else {
       s.q = std::move(values);
@@ -316,6 +317,7 @@ std::vector<RobotState> readPath(const RobotModel& robot, std::istream& in,
 }
 
 std::vector<RobotState> readPathFile(const RobotModel& robot, const std::string& path) {
+  requireRegularFile(path, "path file", kMaxDataFileBytes);
   std::ifstream in(path);
   if (!in) throw FileError(path, "cannot open the path file");
   return readPath(robot, in, path);

@@ -37,20 +37,18 @@ void appendColonList(const char* value, std::vector<std::string>* out) {
 std::string declaredPackageName(const fs::path& dir) {
   std::error_code ec;
   const fs::path manifest = dir / "package.xml";
-  if (!fs::is_regular_file(manifest, ec)) return "";
-  std::ifstream in(manifest, std::ios::binary);
-  std::ostringstream manifest_text;
-  manifest_text << in.rdbuf();
-  if (!in || in.bad()) return "";
-  // A manifest that is not UTF-8 text is treated as unreadable (xml_text.h says why it must not
-  // reach TinyXML).
+  if (!fs::exists(manifest, ec)) return "";
+  // A manifest that is not a small regular file of UTF-8 text nested no deeper than
+  // kMaxXmlDepth is treated as unreadable (xml_text.h says why it must not reach TinyXML).
+  std::string manifest_text;
   try {
-    detail::requireXmlText(manifest_text.str(), manifest.string());
+    manifest_text = readWholeFile(manifest.string(), "package manifest", kMaxXmlFileBytes);
+    detail::requireXmlText(manifest_text, manifest.string());
   } catch (const FileError&) {
     return "";
   }
   TiXmlDocument doc;
-  doc.Parse(manifest_text.str().c_str());
+  doc.Parse(manifest_text.c_str());
   if (doc.Error()) return "";
   const TiXmlElement* root = doc.RootElement();
   if (root == nullptr) return "";

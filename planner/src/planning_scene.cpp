@@ -1,9 +1,12 @@
 #include "octomotion/planner/planning_scene.h"
 
 #include <cmath>
+#include <filesystem>
 #include <functional>
+#include <limits>
 #include <map>
 #include <ostream>
+#include <sstream>
 
 #include <ompl/base/spaces/RealVectorStateSpace.h>
 #include <ompl/base/spaces/SE3StateSpace.h>
@@ -21,6 +24,7 @@
 #include <ompl/geometric/planners/rrt/RRTConnect.h>
 #include <ompl/geometric/planners/rrt/RRTstar.h>
 #include <ompl/geometric/planners/sbl/SBL.h>
+#include <ompl/util/Exception.h>
 #include <ompl/util/RandomNumbers.h>
 
 #include "octomotion/planner/collision_meshes.h"
@@ -38,6 +42,24 @@ namespace {
 // a motion. Conservative voxels inflate each surface by up to a voxel diagonal, so a step of two
 // voxels rarely lets a contact slip between checks (validation_planned_paths_test re-checks).
 constexpr double kMaxStepVoxels = 2.0;
+
+// Below this a motion across the space would need more than a billion checked states (and
+// OMPL refuses fractions below machine epsilon with an exception that names nothing).
+constexpr double kMinSegmentFraction = 1e-9;
+
+// More states than this in an interpolated path is a spacing typo, not a request.
+constexpr double kMaxPathStates = 1e6;
+
+std::string shortNumber(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+// The OMPL part of loadPlanningScene and plan, whose ompl::Exceptions the callers translate.
+void setUpOmpl(PlanningScene& scene, bool free_flying, double robot_diagonal, double resolution,
+               bool bounds_given);
+PlanResult planWithOmpl(PlanningScene& scene, double interpolation);
 
 }  // namespace
 
@@ -110,6 +132,25 @@ void boundMotionStep(ompl::base::SpaceInformation& si, const RobotModel& robot, 
                            : std::max(1e-9, reach * std::sqrt(std::max(1, robot.variableCount())));
   const double extent = si.getStateSpace()->getMaximumExtent();
   const double fraction = kMaxStepVoxels * resolution / speed / extent;
+  if (!(fraction >= kMinSegmentFraction)) {
+    std::string culprit = "the state space";
+    if (robot.isFreeFlying()) {
+      culprit = "the position bounds";
+    } else if (!robot.variables().empty()) {
+      const Variable* widest = &robot.variables().front();
+      for (const Variable& v : robot.variables()) {
+        if (v.upper - v.lower > widest->upper - widest->lower) widest = &v;
+      }
+      culprit = "joint '" + widest->name + "' with limits [" + shortNumber(widest->lower) + ", " +
+                shortNumber(widest->upper) + "]";
+    }
+    throw InvalidArgument(culprit + " make" + (robot.isFreeFlying() ? "" : "s") +
+                          " motions too long to check at a resolution of " +
+                          shortNumber(resolution) + " m (more than " +
+                          shortNumber(1 / kMinSegmentFraction) +
+                          " states per motion across the space); narrow them or use a coarser "
+                          "resolution");
+  }
   if (std::isfinite(fraction) && fraction > 0 &&
       fraction < si.getStateValidityCheckingResolution()) {
     si.setStateValidityCheckingResolution(fraction);
@@ -156,13 +197,18 @@ PlanningScene loadPlanningScene(const std::string& scene_path, const SceneOverri
     }
     if (!spec.robot.srdf.empty()) robot->loadSrdfFile(spec.robot.srdf);
   } else {
-    robot = RobotModel::fromMesh(spec.robot.mesh);
-    MeshLoadOptions mo;
-    mo.keep_root_transform = spec.robot.keep_mesh_root_transform;
-    const TriangleMesh mesh = loadMesh(spec.robot.mesh, mo);
-    Eigen::AlignedBox3d box;
-    for (const Eigen::Vector3d& v : mesh.vertices) box.extend(v);
-    robot_diagonal = box.diagonal().norm();
+    // Errors in the robot's mesh also name the scene (a .cfg names its robot by file).
+    try {
+      robot = RobotModel::fromMesh(spec.robot.mesh);
+      MeshLoadOptions mo;
+      mo.keep_root_transform = spec.robot.keep_mesh_root_transform;
+      const TriangleMesh mesh = loadMesh(spec.robot.mesh, mo);
+      Eigen::AlignedBox3d box;
+      for (const Eigen::Vector3d& v : mesh.vertices) box.extend(v);
+      robot_diagonal = box.diagonal().norm();
+    } catch (const Error& e) {
+      throw FileError(spec.path, std::string("robot: ") + e.what());
+    }
   }
 
   // The environment, and the region the problem lives in.
@@ -178,6 +224,7 @@ PlanningScene loadPlanningScene(const std::string& scene_path, const SceneOverri
   const EnvironmentGeometry& environment = *scene.environment;
   Eigen::AlignedBox3d scene_box;
   if (const auto b = environment.bounds()) scene_box = *b;
+  const bool bounds_given = spec.problem.bounds.has_value();
   if (robot->isFreeFlying() && !spec.problem.bounds) {
     // OMPL.app infers the bounds from the environment when a problem gives none.
     if (scene_box.isEmpty()) {
@@ -188,8 +235,19 @@ PlanningScene loadPlanningScene(const std::string& scene_path, const SceneOverri
     spec.problem.bounds = scene_box;
   }
   if (spec.problem.bounds) scene_box.extend(*spec.problem.bounds);
+  // How errors name the resolution's origin.
+  std::string resolution_field = overrides.resolution ? "--resolution" : "octree.resolution";
   if (!spec.octree.resolution) {
     spec.octree.resolution = autoResolution(*robot, scene_box, robot_diagonal);
+    resolution_field += " auto";
+    if (!(std::isfinite(*spec.octree.resolution) && *spec.octree.resolution > 0)) {
+      throw FileError(spec.path,
+                      resolution_field + ": the scene's extent (diagonal " +
+                          shortNumber(scene_box.isEmpty() ? 0.0 : scene_box.diagonal().norm()) +
+                          " m) and the robot's (diagonal " + shortNumber(robot_diagonal) +
+                          " m) give " + shortNumber(*spec.octree.resolution) +
+                          " m, not a voxel size; give the resolution in metres");
+    }
   }
 
   CollisionModelOptions options;
@@ -211,9 +269,14 @@ PlanningScene loadPlanningScene(const std::string& scene_path, const SceneOverri
   options.center_mesh_vertices = spec.robot.center_mesh_vertices;
   options.warnings = warnings;
   const bool free_flying = robot->isFreeFlying();
-  scene.model =
-      std::make_shared<const OctreeCollisionModel>(std::move(*robot), environment, options);
-  const RobotModel& model_robot = scene.model->robot();
+  try {
+    scene.model =
+        std::make_shared<const OctreeCollisionModel>(std::move(*robot), environment, options);
+  } catch (const InvalidArgument& e) {
+    // Most model errors depend on the resolution (depth, memory guard): say where it came from.
+    throw InvalidArgument(spec.path + ": at " + resolution_field + " " +
+                          shortNumber(options.resolution) + " m: " + e.what());
+  }
   // The references, lazily: they keep the octree model (for its robot) and the objects alive.
   {
     const std::shared_ptr<const OctreeCollisionModel> octree_model = scene.model;
@@ -232,14 +295,74 @@ PlanningScene loadPlanningScene(const std::string& scene_path, const SceneOverri
         });
   }
 
-  // OMPL.
+  // OMPL. Its exceptions name no file: ours do.
+  try {
+    setUpOmpl(scene, free_flying, robot_diagonal, options.resolution, bounds_given);
+  } catch (const ompl::Exception& e) {
+    throw InvalidArgument(spec.path + ": OMPL refused the problem: " + e.what());
+  } catch (const InvalidArgument& e) {
+    throw InvalidArgument(spec.path + ": " + e.what());
+  }
+  return scene;
+}
+
+namespace {
+
+// "[problem] start.x" for an OMPL.app .cfg, "problem.start: x" for a YAML scene.
+bool isCfg(const SceneSpec& spec) {
+  return std::filesystem::path(spec.path).extension() == ".cfg";
+}
+
+// A start or goal outside the joint limits or the position bounds: OMPL would only warn and find
+// no solution, so the scene is refused with the value and the bound.
+void requireWithinBounds(const SceneSpec& spec, const RobotModel& robot, const StateSpec& state,
+                         const char* which, bool bounds_given) {
+  constexpr double eps = std::numeric_limits<double>::epsilon();  // OMPL's tolerance
+  auto outside = [&](double v, double lo, double hi) { return v + eps < lo || v - eps > hi; };
+  const bool cfg = isCfg(spec);
+  if (robot.isFreeFlying()) {
+    const Eigen::AlignedBox3d& box = *spec.problem.bounds;
+    const Eigen::Vector3d p = state.pose->translation();
+    for (int a = 0; a < 3; ++a) {
+      if (!outside(p[a], box.min()[a], box.max()[a])) continue;
+      const std::string axis(1, "xyz"[a]);
+      std::string bound;
+      if (!bounds_given) {
+        bound = "the environment's bounds";
+      } else if (cfg) {
+        bound = "[volume.min." + axis + ", volume.max." + axis + "]";
+      } else {
+        bound = "problem.bounds";
+      }
+      const std::string field = cfg ? "[problem] " + std::string(which) + "." + axis
+                                    : "problem." + std::string(which) + ": " + axis;
+      throw FileError(spec.path, field + " = " + shortNumber(p[a]) + " is outside " + bound + " [" +
+                                     shortNumber(box.min()[a]) + ", " + shortNumber(box.max()[a]) +
+                                     "]");
+    }
+    return;
+  }
+  for (std::size_t i = 0; i < state.joints.size(); ++i) {
+    const Variable& v = robot.variables()[i];
+    if (!outside(state.joints[i], v.lower, v.upper)) continue;
+    throw FileError(spec.path, "problem." + std::string(which) + "[" + std::to_string(i) +
+                                   "]: joint '" + v.name + "' = " + shortNumber(state.joints[i]) +
+                                   " is outside its " + (v.continuous ? "range" : "limits") + " [" +
+                                   shortNumber(v.lower) + ", " + shortNumber(v.upper) + "]");
+  }
+}
+
+void setUpOmpl(PlanningScene& scene, bool free_flying, double robot_diagonal, double resolution,
+               bool bounds_given) {
+  const SceneSpec& spec = scene.spec;
+  const RobotModel& model_robot = scene.model->robot();
   const Eigen::AlignedBox3d* bounds = free_flying ? &*spec.problem.bounds : nullptr;
   scene.setup = std::make_shared<og::SimpleSetup>(makeStateSpace(model_robot, bounds));
   const ob::SpaceInformationPtr& si = scene.setup->getSpaceInformation();
   boundMotionStep(
       *si, model_robot,
       free_flying ? robot_diagonal : scene.model->report().reach_W.sizes().maxCoeff() / 2,
-      options.resolution);
+      resolution);
   scene.checker = spec.octree.checker;
   if (scene.checker == "fcl") {
     scene.setup->setStateValidityChecker(std::make_shared<FclValidityChecker>(si, scene.fcl_model));
@@ -267,14 +390,28 @@ PlanningScene loadPlanningScene(const std::string& scene_path, const SceneOverri
     return state;
   };
   if (spec.problem.start && spec.problem.goal) {
-    scene.setup->setStartAndGoalStates(toState(*spec.problem.start, "problem.start"),
-                                       toState(*spec.problem.goal, "problem.goal"));
+    const auto start = toState(*spec.problem.start, "problem.start");
+    const auto goal = toState(*spec.problem.goal, "problem.goal");
+    requireWithinBounds(spec, model_robot, *spec.problem.start, "start", bounds_given);
+    requireWithinBounds(spec, model_robot, *spec.problem.goal, "goal", bounds_given);
+    scene.setup->setStartAndGoalStates(start, goal);
   }
   scene.setup->setPlanner(makePlanner(spec.problem.planner, si));
-  return scene;
 }
 
+}  // namespace
+
 PlanResult plan(PlanningScene& scene, double interpolation) {
+  try {
+    return planWithOmpl(scene, interpolation);
+  } catch (const ompl::Exception& e) {
+    throw InvalidArgument(scene.spec.path + ": OMPL failed: " + e.what());
+  }
+}
+
+namespace {
+
+PlanResult planWithOmpl(PlanningScene& scene, double interpolation) {
   PlanResult result;
   og::SimpleSetup& ss = *scene.setup;
   ss.setup();
@@ -286,12 +423,22 @@ PlanResult plan(PlanningScene& scene, double interpolation) {
   result.path = std::make_shared<og::PathGeometric>(ss.getSolutionPath());
   if (interpolation > 0) {
     const double length = result.path->length();
-    result.path->interpolate(static_cast<unsigned>(std::ceil(length / interpolation)) + 1);
+    const double states = std::ceil(length / interpolation) + 1;
+    if (!(states <= kMaxPathStates)) {
+      throw InvalidArgument(scene.spec.path + ": interpolation (--interpolation): a spacing of " +
+                            shortNumber(interpolation) + " along a path of length " +
+                            shortNumber(length) + " needs " + shortNumber(states) +
+                            " states, more than the limit of " + shortNumber(kMaxPathStates) +
+                            "; give a larger spacing");
+    }
+    result.path->interpolate(static_cast<unsigned>(states));
   } else {
     result.path->interpolate();
   }
   return result;
 }
+
+}  // namespace
 
 void writePath(const PlanningScene& scene, const og::PathGeometric& path, std::ostream& out) {
   const RobotModel& robot = scene.model->robot();

@@ -281,6 +281,15 @@ void RobotModel::forwardKinematics(const double* q, std::size_t q_size, RobotDat
       X_WC.linear() = X_WC.linear() * Eigen::AngleAxisd(value, step.axis).toRotationMatrix();
     }
   }
+  // Finite values can still give a non-finite pose (a huge limit or mimic multiplier along a
+  // chain overflows); a collision query could call such a link free, so no caller gets one.
+  for (std::size_t l = 0; l < data.X_WL.size(); ++l) {
+    const Eigen::Isometry3d& X = data.X_WL[l];
+    if (!X.translation().allFinite() || !X.linear().allFinite()) {
+      throw InvalidArgument("forwardKinematics: the pose of link '" + links_[l].name +
+                            "' is not finite");
+    }
+  }
 }
 
 bool RobotModel::withinLimits(const Eigen::VectorXd& q) const {

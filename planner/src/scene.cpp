@@ -5,11 +5,14 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
+#include <set>
 #include <sstream>
 
 #include <yaml-cpp/yaml.h>
 
 #include "octomotion/error.h"
+#include "octomotion/input_limits.h"
 
 namespace octomotion {
 
@@ -18,11 +21,7 @@ namespace fs = std::filesystem;
 namespace {
 
 std::string readFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw FileError(path, "cannot open the scene file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
+  return readWholeFile(path, "scene file", kMaxSceneFileBytes);
 }
 
 std::string resolvePath(const std::string& scene_path, const std::string& file) {
@@ -92,12 +91,18 @@ class YamlReader {
     const std::vector<double> v = numbers(node, field, 3);
     return {v[0], v[1], v[2]};
   }
-  // Rejects keys this format does not know: a typo must not be silently ignored.
+  // Rejects keys this format does not know, and keys given twice (yaml-cpp keeps one of them
+  // silently): a typo must not be silently ignored.
   void allowOnly(const YAML::Node& map, const std::string& field,
                  std::initializer_list<const char*> keys) const {
     if (!map.IsMap()) fail(field, map, "expected a mapping");
+    std::set<std::string> seen;
     for (const auto& kv : map) {
       const std::string key = kv.first.Scalar();
+      if (!seen.insert(key).second) {
+        fail(field.empty() ? key : field + "." + key, kv.first,
+             "key given twice in the same mapping");
+      }
       bool known = false;
       for (const char* k : keys) known = known || key == k;
       if (!known) fail(field.empty() ? key : field + "." + key, kv.first, "unknown key");
@@ -114,17 +119,17 @@ class YamlReader {
       X.linear() = rotationFromRpy(rpy.x(), rpy.y(), rpy.z());
     } else if (node["quat"]) {
       const std::vector<double> q = numbers(node["quat"], field + ".quat", 4);
-      const double norm = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
-      if (!(norm > 1e-9)) fail(field + ".quat", node["quat"], "quaternion has zero length");
       // [qx, qy, qz, qw], normalised (documented in docs/scenes.md).
+      const auto unit = scaledUnitVector(Eigen::Vector4d(q[0], q[1], q[2], q[3]));
+      if (!unit) fail(field + ".quat", node["quat"], "quaternion has zero length");
       X.linear() =
-          Eigen::Quaterniond(q[3] / norm, q[0] / norm, q[1] / norm, q[2] / norm).toRotationMatrix();
+          Eigen::Quaterniond((*unit)[3], (*unit)[0], (*unit)[1], (*unit)[2]).toRotationMatrix();
     } else if (node["axis"]) {
-      const Eigen::Vector3d axis = vector3(node["axis"], field + ".axis");
-      if (!(axis.norm() > 1e-12)) fail(field + ".axis", node["axis"], "axis has zero length");
+      const auto axis = scaledUnitVector(vector3(node["axis"], field + ".axis"));
+      if (!axis) fail(field + ".axis", node["axis"], "axis has zero length");
       if (!node["theta"]) fail(field, node, "axis needs theta (radians)");
       const double theta = number(node["theta"], field + ".theta");
-      X.linear() = Eigen::AngleAxisd(theta, axis.normalized()).toRotationMatrix();
+      X.linear() = Eigen::AngleAxisd(theta, *axis).toRotationMatrix();
     } else if (node["theta"]) {
       fail(field + ".theta", node["theta"], "theta needs axis");
     }
@@ -305,10 +310,15 @@ void parseProblem(const YamlReader& r, const YAML::Node& node, SceneSpec& scene)
     p.bounds = Eigen::AlignedBox3d(lo, hi);
   }
   if (node["planner"]) p.planner = r.string(node["planner"], "problem.planner");
-  if (node["time"]) p.time = r.positive(node["time"], "problem.time");
+  if (node["time"]) {
+    p.time = r.positive(node["time"], "problem.time");
+    if (p.time > kMaxPlanningSeconds) {
+      r.fail("problem.time", node["time"], planningTimeTooLong(p.time));
+    }
+  }
   if (node["seed"]) {
     const double seed = r.number(node["seed"], "problem.seed");
-    if (seed < 0 || seed != std::floor(seed) || seed > 9.0e15) {
+    if (seed < 0 || seed != std::floor(seed) || seed > kMaxSeed) {
       r.fail("problem.seed", node["seed"], "expected a non-negative integer");
     }
     p.seed = static_cast<std::uint64_t>(seed);
@@ -322,6 +332,13 @@ Eigen::Matrix3d rotationFromRpy(double roll, double pitch, double yaw) {
           Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) *
           Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX()))
       .toRotationMatrix();
+}
+
+std::string planningTimeTooLong(double seconds) {
+  std::ostringstream s;
+  s << seconds << " s is more than the limit of " << kMaxPlanningSeconds
+    << " s (OMPL's deadline would overflow)";
+  return s.str();
 }
 
 const char* checkerName(const std::string& name) {
@@ -364,6 +381,7 @@ SceneSpec parseOmplAppCfg(const std::string& text, const std::string& path) {
   // INI sections; later keys override earlier ones except in [planner] (a list).
   std::map<std::string, std::string> problem;
   std::vector<std::string> planners;
+  std::optional<std::string> time_limit;  // [benchmark] time_limit
   std::string section;
   std::istringstream lines(text);
   std::string line;
@@ -392,32 +410,39 @@ SceneSpec parseOmplAppCfg(const std::string& text, const std::string& path) {
     const std::string value = trim(line.substr(eq + 1));
     if (section == "problem") problem[key] = value;
     if (section == "planner" && key.find('.') == std::string::npos) planners.push_back(key);
-    if (section == "benchmark" && key == "time_limit") problem["__time_limit"] = value;
+    if (section == "benchmark" && key == "time_limit") time_limit = value;
   }
   auto get = [&](const std::string& key) -> const std::string& {
     const auto it = problem.find(key);
     if (it == problem.end()) throw FileError(path, "[problem] " + key + ": missing");
     return it->second;
   };
-  auto num = [&](const std::string& key) {
-    const std::string& v = get(key);
+  // A finite number; `field` is how the error names the key.
+  auto parse = [&](const std::string& v, const std::string& field) {
     char* end = nullptr;
     const double d = std::strtod(v.c_str(), &end);
     if (v.empty() || *end != '\0' || !std::isfinite(d)) {
-      throw FileError(path, "[problem] " + key + ": expected a finite number, got '" + v + "'");
+      throw FileError(path, field + ": expected a finite number, got '" + v + "'");
     }
     return d;
+  };
+  auto num = [&](const std::string& key) { return parse(get(key), "[problem] " + key); };
+  // A file name: an empty one would resolve to the .cfg's directory.
+  auto file = [&](const std::string& key) {
+    const std::string& v = get(key);
+    if (v.empty()) throw FileError(path, "[problem] " + key + ": empty, expected a file name");
+    return resolvePath(path, v);
   };
   SceneSpec scene;
   scene.path = path;
   scene.name = problem.count("name") ? problem["name"] : fs::path(path).stem().string();
-  scene.robot.mesh = resolvePath(path, get("robot"));
+  scene.robot.mesh = file("robot");
   scene.robot.keep_mesh_root_transform = true;  // OMPL.app keeps the Collada root transform
   scene.robot.center_mesh_vertices = true;      // and centres the robot on its vertex mean
   EnvironmentObject world;
   world.name = "world";
   world.kind = EnvironmentObject::Kind::kMesh;
-  world.file = resolvePath(path, get("world"));
+  world.file = file("world");
   world.keep_mesh_root_transform = true;
   scene.environment.push_back(world);
   auto pose = [&](const std::string& prefix) {
@@ -432,8 +457,9 @@ SceneSpec parseOmplAppCfg(const std::string& text, const std::string& path) {
       axis.x() = num(prefix + ".axis.x");
       axis.y() = num(prefix + ".axis.y");
       axis.z() = num(prefix + ".axis.z");
-      if (!(axis.norm() > 1e-12)) throw FileError(path, "[problem] " + prefix + ".axis: zero");
-      X.linear() = Eigen::AngleAxisd(num(prefix + ".theta"), axis.normalized()).toRotationMatrix();
+      const auto unit = scaledUnitVector(axis);
+      if (!unit) throw FileError(path, "[problem] " + prefix + ".axis: zero");
+      X.linear() = Eigen::AngleAxisd(num(prefix + ".theta"), *unit).toRotationMatrix();
     }
     StateSpec s;
     s.pose = X;
@@ -441,7 +467,10 @@ SceneSpec parseOmplAppCfg(const std::string& text, const std::string& path) {
   };
   scene.problem.start = pose("start");
   scene.problem.goal = pose("goal");
-  if (problem.count("volume.min.x")) {
+  // All six volume keys or none: a missing one must not drop the others silently.
+  bool any_volume_key = false;
+  for (const auto& kv : problem) any_volume_key |= kv.first.rfind("volume.", 0) == 0;
+  if (any_volume_key) {
     Eigen::Vector3d lo, hi;
     for (int a = 0; a < 3; ++a) {
       const std::string axis(1, "xyz"[a]);
@@ -453,9 +482,12 @@ SceneSpec parseOmplAppCfg(const std::string& text, const std::string& path) {
     }
     scene.problem.bounds = Eigen::AlignedBox3d(lo, hi);
   }
-  if (problem.count("__time_limit")) {
-    const double t = num("__time_limit");
+  if (time_limit) {
+    const double t = parse(*time_limit, "[benchmark] time_limit");
     if (!(t > 0)) throw FileError(path, "[benchmark] time_limit: must be > 0");
+    if (t > kMaxPlanningSeconds) {
+      throw FileError(path, "[benchmark] time_limit: " + planningTimeTooLong(t));
+    }
     scene.problem.time = t;
   }
   return scene;

@@ -9,22 +9,14 @@
 
 #include <tinyxml.h>
 
+#include "octomotion/input_limits.h"
 #include "octomotion/planner/robot_model.h"
 #include "xml_text.h"
 
 namespace octomotion {
 
 void RobotModel::loadSrdfFile(const std::string& path, SrdfMode mode) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) {
-    throw FileError(path, "SRDF file does not exist");
-  }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw FileError(path, "cannot open the SRDF file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw FileError(path, "cannot read the SRDF file");
-  loadSrdfString(text.str(), path, mode);
+  loadSrdfString(readWholeFile(path, "SRDF file", kMaxXmlFileBytes), path, mode);
 }
 
 void RobotModel::loadSrdfString(const std::string& srdf_xml, const std::string& source_name,

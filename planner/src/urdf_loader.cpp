@@ -18,6 +18,7 @@
 #include <tinyxml.h>
 #include <urdf_parser/urdf_parser.h>
 
+#include "octomotion/input_limits.h"
 #include "octomotion/planner/package_locator.h"
 #include "octomotion/planner/robot_model.h"
 #include "robot_model_builder.h"
@@ -111,6 +112,12 @@ class Loader {
       xml_.links.push_back(std::move(link));
     }
     if (xml_.links.empty()) fail("the robot has no <link>");
+    // Checked before urdfdom and the links x links collision filter allocate anything.
+    if (xml_.links.size() > static_cast<std::size_t>(kMaxRobotLinks)) {
+      fail("the robot has " + std::to_string(xml_.links.size()) +
+           " links, more than the limit of " + std::to_string(kMaxRobotLinks) +
+           " (docs/robustness.md, input limits)");
+    }
 
     std::set<std::string> joint_names;
     std::vector<int> parent_joint(xml_.links.size(), -1);
@@ -254,9 +261,10 @@ class Loader {
   static Eigen::Isometry3d toIsometry(const urdf::Pose& pose) {
     Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
     X.translation() = Eigen::Vector3d(pose.position.x, pose.position.y, pose.position.z);
-    const Eigen::Quaterniond rotation(pose.rotation.w, pose.rotation.x, pose.rotation.y,
-                                      pose.rotation.z);
-    X.linear() = rotation.normalized().toRotationMatrix();
+    const auto q = scaledUnitVector(
+        Eigen::Vector4d(pose.rotation.w, pose.rotation.x, pose.rotation.y, pose.rotation.z));
+    // checkPose refused a non-finite or degenerate rotation before.
+    if (q) X.linear() = Eigen::Quaterniond((*q)[0], (*q)[1], (*q)[2], (*q)[3]).toRotationMatrix();
     return X;
   }
 
@@ -370,11 +378,11 @@ class Loader {
         fail(where + " has an unsupported type");
     }
     if (joint.movable()) {
-      const Eigen::Vector3d axis(uj.axis.x, uj.axis.y, uj.axis.z);
-      if (!axis.allFinite() || !(axis.norm() > 1e-9)) {
+      const auto axis = scaledUnitVector(Eigen::Vector3d(uj.axis.x, uj.axis.y, uj.axis.z));
+      if (!axis) {
         fail(where + ": <axis xyz=\"" + vec(uj.axis) + "\"> must be a finite non-zero vector");
       }
-      joint.axis = axis.normalized();
+      joint.axis = *axis;
     }
     if (uj.limits) {
       joint.max_velocity = uj.limits->velocity;
@@ -416,6 +424,13 @@ class Loader {
         // current = m * next + o, so joint = multiplier * (m * next + o) + offset.
         offset += multiplier * mimic->offset;
         multiplier *= mimic->multiplier;
+        // A composition that overflows would give the joint a NaN or infinite value, and its
+        // links non-finite poses, at every state.
+        if (!std::isfinite(multiplier) || !std::isfinite(offset)) {
+          fail(where + ": its <mimic> chain composes to a multiplier of " + num(multiplier) +
+               " and an offset of " + num(offset) + " (through joint '" + mimic->joint_name +
+               "'), which are not finite");
+        }
         auto next = joint_of.find(mimic->joint_name);
         if (next == joint_of.end()) {
           fail("joint '" + current + "'" + at(line_of.at(current)) + ": <mimic joint=\"" +
@@ -486,17 +501,11 @@ class Loader {
 }  // namespace
 
 RobotModel RobotModel::fromUrdfFile(const std::string& path, const RobotModelOptions& options) {
+  const std::string text = readWholeFile(path, "URDF file", kMaxXmlFileBytes);
   std::error_code ec;
-  if (!fs::exists(path, ec)) throw FileError(path, "URDF file does not exist");
-  if (!fs::is_regular_file(path, ec)) throw FileError(path, "not a regular file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw FileError(path, "cannot open the URDF file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw FileError(path, "cannot read the URDF file");
   const fs::path absolute = fs::absolute(fs::path(path), ec);
   const fs::path dir = (ec ? fs::path(path) : absolute).parent_path();
-  return Loader(path, dir.string(), options).load(text.str());
+  return Loader(path, dir.string(), options).load(text);
 }
 
 RobotModel RobotModel::fromUrdfString(const std::string& urdf_xml, const std::string& source_name,

@@ -1,18 +1,22 @@
 // Text checks before a document reaches TinyXML (our scans, urdfdom). TinyXML 2.6 reads a UTF-8
 // lead byte as "the next 1-3 bytes belong to this character" without checking them, so a lead
 // byte just before the terminating NUL makes it step past the end of the buffer (a heap overflow
-// the URDF fuzzer found). Well-formed UTF-8 without NUL bytes cannot trigger that.
+// the URDF fuzzer found). Well-formed UTF-8 without NUL bytes cannot trigger that. TinyXML also
+// recurses once per nested element (and takes time quadratic in the depth), so the nesting depth
+// is bounded too.
 #pragma once
 
 #include <cstddef>
 #include <string>
 
 #include "octomotion/error.h"
+#include "octomotion/input_limits.h"
 
 namespace octomotion::detail {
 
 // Throws FileError naming `source_name`, the line and the byte offset when `text` holds a NUL
-// byte or is not well-formed UTF-8 (truncated or stray continuation bytes, invalid lead bytes).
+// byte or is not well-formed UTF-8 (truncated or stray continuation bytes, invalid lead bytes),
+// or when its elements nest deeper than kMaxXmlDepth.
 inline void requireXmlText(const std::string& text, const std::string& source_name) {
   int line = 1;
   auto fail = [&](std::size_t offset, const char* what) {
@@ -47,6 +51,7 @@ inline void requireXmlText(const std::string& text, const std::string& source_na
     }
     i += length;
   }
+  requireXmlDepth(text, source_name);
 }
 
 }  // namespace octomotion::detail

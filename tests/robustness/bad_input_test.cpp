@@ -60,7 +60,8 @@ TEST(BadInput, RobotFiles) {
         Case{"missing_mesh.urdf", urdf, "does_not_exist.stl"},
         Case{"unknown_joint_type.urdf", urdf, "twisty"}, Case{"cycle.urdf", urdf, "cycle"},
         Case{"nan_origin.urdf", urdf, "origin"}, Case{"negative_box.urdf", urdf, "box"},
-        Case{"truncated_utf8.urdf", urdf, "truncated UTF-8 sequence at line 7"}}) {
+        Case{"truncated_utf8.urdf", urdf, "truncated UTF-8 sequence at line 7"},
+        Case{"deep_nesting.urdf", urdf, "XML elements nest more than 256 deep at line 3"}}) {
     expectRejected(c);
   }
   RobotModelOptions options;
@@ -73,7 +74,8 @@ TEST(BadInput, RobotFiles) {
 
 TEST(BadInput, Meshes) {
   for (const Case& c : {Case{"garbage.stl", mesh, ""}, Case{"empty.stl", mesh, ""},
-                        Case{"truncated_binary.stl", mesh, ""}}) {
+                        Case{"truncated_binary.stl", mesh, ""},
+                        Case{"deep_nesting.dae", mesh, "XML elements nest more than 256 deep"}}) {
     expectRejected(c);
   }
 }

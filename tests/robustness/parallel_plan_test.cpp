@@ -117,7 +117,8 @@ TEST(MultiThreadedPlanning, AnytimePathShorteningOnOneChecker) {
 }
 
 // Many threads, one checker, one fixed-seed state set: exactly the single-threaded answers, for
-// isValid and for checkMotion (the motion validator's interpolated states are checked too).
+// isValid, clearance (README: thread-safe) and checkMotion (the motion validator's interpolated
+// states are checked too).
 TEST_P(MultiThreadedPlanners, ManyThreadsGetTheSingleThreadedAnswers) {
   PlanningScene scene = load(GetParam(), 13);
   const ob::SpaceInformationPtr& si = scene.setup->getSpaceInformation();
@@ -128,24 +129,33 @@ TEST_P(MultiThreadedPlanners, ManyThreadsGetTheSingleThreadedAnswers) {
     states.push_back(si->allocState());
     sampler->sampleUniform(states.back());
   }
+  const ob::StateValidityChecker& checker = *si->getStateValidityChecker();
   std::vector<char> valid(n), motion(n);
+  // clearance costs up to ~100 isValid calls: a subset of the states keeps the test fast (and
+  // its ThreadSanitizer run in CI short).
+  const int clearance_states = 17;
+  std::vector<double> clearance(clearance_states);
   for (int i = 0; i < n; ++i) {
     valid[i] = si->isValid(states[i]);
+    if (i < clearance_states) clearance[i] = checker.clearance(states[i]);
     motion[i] = si->checkMotion(states[i], states[(i + 1) % n]);
   }
   const auto valid_count = std::count(valid.begin(), valid.end(), 1);
   EXPECT_GT(valid_count, 0);
   EXPECT_LT(valid_count, n);  // both answers occur, so the comparison means something
+  EXPECT_GT(std::count_if(clearance.begin(), clearance.end(), [](double c) { return c > 0; }), 0);
 
   const int threads = 8;
   std::vector<std::vector<char>> got_valid(threads, std::vector<char>(n));
   std::vector<std::vector<char>> got_motion(threads, std::vector<char>(n));
+  std::vector<std::vector<double>> got_clearance(threads, std::vector<double>(clearance_states));
   std::vector<std::thread> pool;
   for (int t = 0; t < threads; ++t) {
     pool.emplace_back([&, t] {
       for (int k = 0; k < n; ++k) {
         const int i = (k * (2 * t + 1) + 31 * t) % n;
         got_valid[t][i] = si->isValid(states[i]);
+        if (i < clearance_states) got_clearance[t][i] = checker.clearance(states[i]);
         got_motion[t][i] = si->checkMotion(states[i], states[(i + 1) % n]);
       }
     });
@@ -154,6 +164,7 @@ TEST_P(MultiThreadedPlanners, ManyThreadsGetTheSingleThreadedAnswers) {
   for (int t = 0; t < threads; ++t) {
     EXPECT_EQ(got_valid[t], valid) << "thread " << t;
     EXPECT_EQ(got_motion[t], motion) << "thread " << t;
+    EXPECT_EQ(got_clearance[t], clearance) << "thread " << t;
   }
   for (auto* s : states) si->freeState(s);
 }

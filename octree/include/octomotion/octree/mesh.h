@@ -9,6 +9,8 @@
 
 #include <Eigen/Core>
 
+#include "octomotion/input_limits.h"
+
 namespace octomotion {
 
 // Indexed triangles; the outward side is the counter-clockwise one (right-hand rule).
@@ -24,6 +26,8 @@ struct MeshLoadOptions {
   // (geometric_shapes) do for URDF meshes: vertices stay as written, which also ignores <unit>.
   bool keep_root_transform = true;
   Eigen::Vector3d scale = Eigen::Vector3d::Ones();  // URDF <mesh scale>, applied last
+  // Larger files are refused before assimp reads them (its import takes ~40x the file size).
+  std::uintmax_t max_file_bytes = kMaxMeshFileBytes;
 };
 
 // Loads every triangle of every mesh in the file (STL binary/ASCII, Collada, OBJ, ... whatever

@@ -171,7 +171,8 @@ class RobotModel {
   RobotData makeData() const;
   // World pose of every link, for configuration q (variableCount() values) and base pose X_WB
   // (the root link's pose; fixed-base robots usually pass their mounting pose). Allocation-free.
-  // Throws InvalidArgument for a wrong q size, a non-finite q or a RobotData of another model.
+  // Throws InvalidArgument for a wrong q size, a non-finite q, a RobotData of another model or a
+  // link pose that comes out non-finite (the checkers then call the state invalid).
   void forwardKinematics(const double* q, std::size_t q_size, RobotData& data,
                          const Eigen::Isometry3d& X_WB = Eigen::Isometry3d::Identity()) const;
   void forwardKinematics(const Eigen::VectorXd& q, RobotData& data,

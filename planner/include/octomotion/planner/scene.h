@@ -85,6 +85,12 @@ SceneSpec parseSceneYaml(const std::string& text, const std::string& path);
 SceneSpec parseOmplAppCfg(const std::string& text, const std::string& path);
 
 // Shared by scene parsing and the command line.
+// The longest planning time accepted: OMPL's deadline is the system clock plus the time in
+// nanoseconds, which overflows (and ends the search at once) from about 7e9 s.
+inline constexpr double kMaxPlanningSeconds = 1e6;
+std::string planningTimeTooLong(double seconds);  // "... s is more than the limit of ..."
+// The largest seed accepted: every integer up to it is exact in a double.
+inline constexpr double kMaxSeed = 9.0e15;
 const char* checkerName(const std::string& name);  // validated, or throws InvalidArgument
 // URDF convention: fixed axes, roll about x, then pitch about y, then yaw about z.
 Eigen::Matrix3d rotationFromRpy(double roll, double pitch, double yaw);
