@@ -4,11 +4,12 @@
 // 1 cm to 100 m, written as STL, OBJ or COLLADA with node transforms, units and up axes), a
 // shipped arm, or the real Panda when its folder is given — an environment of generated meshes,
 // primitives and point clouds scaled to it, a resolution, link-tree ratios, a rounding, a checker
-// path and exact primitives or not; then uniform random states. It counts, per path, the states
-// FCL finds in contact that the octree calls free (false negatives: none allowed with
-// conservative rounding) and the distances of the states it rejects that FCL calls free, against
-// the margin docs/validation.md derives for that path (none allowed beyond it, either rounding).
-// Used by bench/differential_validation (millions of states) and by a bounded test.
+// path, exact primitives or not and self-pair tables or not; then uniform random states. It counts,
+// per path, the states FCL finds in contact that the octree calls free (false negatives: none
+// allowed with conservative rounding) and the distances of the states it rejects that FCL calls
+// free, against the margin docs/validation.md derives for that path (none allowed beyond it, either
+// rounding). Used by bench/validation_differential_bench (millions of states) and by a bounded
+// test.
 #pragma once
 
 #include <algorithm>
@@ -27,6 +28,8 @@
 #include "fcl_reference.h"
 #include "generated_meshes.h"
 #include "octomotion/octree/mesh.h"
+#include "octomotion/octree/shapes.h"
+#include "octomotion/planner/collision_meshes.h"
 
 namespace octomotion::validation {
 
@@ -47,7 +50,8 @@ struct PathTally {
   std::size_t missed_env = 0, missed_self = 0;  // false negatives
   std::size_t extra_env = 0, extra_self = 0;    // false positives
   std::size_t beyond = 0;                       // false positives farther than the margin
-  std::vector<double> ratio;                    // false positive's FCL distance / margin
+  std::size_t inside_solid = 0;  // ... where one solid lies wholly inside another (FCL: surfaces)
+  std::vector<double> ratio;     // false positive's FCL distance / margin
 };
 
 struct DifferentialReport {
@@ -120,8 +124,10 @@ inline PolyMesh randomShape(std::mt19937_64& rng, std::string* kind) {
 
 // Writes the shape, scaled to `size` and moved off its origin, as STL, OBJ or COLLADA (random
 // unit, up axis and node hierarchy); returns the file name (relative to dir) and what it is.
+// `units`: COLLADA files may carry a unit other than the metre (the reader then applies it only
+// where the root transform is kept, so URDF meshes, which drop it, are written in metres).
 inline std::string writeShape(std::mt19937_64& rng, const std::string& dir, const std::string& stem,
-                              double size, std::string* what) {
+                              double size, std::string* what, bool units = true) {
   std::string kind;
   PolyMesh m = randomShape(rng, &kind);
   for (Eigen::Vector3d& v : m.vertices) v *= size;
@@ -147,8 +153,8 @@ inline std::string writeShape(std::mt19937_64& rng, const std::string& dir, cons
     test::ColladaDocument doc;
     const char* axes[] = {"Y_UP", "Z_UP", "X_UP"};
     doc.up_axis = axes[std::uniform_int_distribution<int>(0, 2)(rng)];
-    const double units[] = {1.0, 0.01, 0.0254};
-    doc.unit_metres = units[std::uniform_int_distribution<int>(0, 2)(rng)];
+    const double unit_choices[] = {1.0, 0.01, 0.0254};
+    doc.unit_metres = units ? unit_choices[std::uniform_int_distribution<int>(0, 2)(rng)] : 1.0;
     for (Eigen::Vector3d& v : m.vertices) v /= doc.unit_metres;  // about `size` once read
     doc.geometries.push_back(m);
     // One to three nested nodes with rotations and translations of up to 100 sizes; the
@@ -183,7 +189,16 @@ struct Case {
   std::string scene_file;
   std::string description;
   SceneOverrides overrides;
+  // Some mesh is not closed, so it is voxelized as a shell whatever the rounding (voxelize.h):
+  // the centre path's margin is then that of a touching voxel (docs/validation.md §3).
+  bool shells = false;
 };
+
+// Whether writeShape's description names a shape that is not closed.
+inline bool isShell(const std::string& shape) {
+  return shape.find("open box") != std::string::npos || shape.find("sheet") != std::string::npos ||
+         shape.find("soup") != std::string::npos;
+}
 
 inline std::string yamlVector(const Eigen::Vector3d& v) {
   std::ostringstream out;
@@ -200,11 +215,46 @@ inline Case makeCase(std::mt19937_64& rng, const DifferentialOptions& options, s
   Case c;
   std::ostringstream yaml, what;
   yaml.precision(17);
-  // The robot: mostly generated rigid bodies; every fifth case an arm.
+  // The robot, by turns: generated rigid bodies (two cases in five, three in ten), a generated
+  // serial arm (one in ten), a shipped arm, the Panda (or a shipped arm without it).
   double size = 1.0;  // the robot's scale, for the environment and the resolution
-  bool arm = false;
+  bool arm = false, generated_arm = false;
   const int kind = static_cast<int>(index % 5);
-  if (kind == 4 || kind == 3) {
+  if (kind == 2 && (index / 5) % 2 == 0) {
+    arm = generated_arm = true;
+    // Two to five links, each a generated mesh along its length, revolute or prismatic joints
+    // about random axes, joint frames turned now and then; 2 cm to 20 m per link.
+    const int links = std::uniform_int_distribution<int>(2, 5)(rng);
+    const double length = logUniform(rng, 0.02, 20.0);
+    std::ostringstream urdf;
+    urdf.precision(17);
+    urdf << "<robot name=\"generated_arm\">\n";
+    std::string shapes;
+    for (int l = 0; l < links; ++l) {
+      std::string shape;
+      const std::string file =
+          writeShape(rng, dir, "link" + std::to_string(l), length / 2, &shape, false);
+      shapes += (l ? ", " : "") + shape;
+      c.shells |= isShell(shape);
+      urdf << "  <link name=\"l" << l << "\"><collision><origin xyz=\"0 0 " << length / 2
+           << "\"/><geometry><mesh filename=\"" << file << "\"/></geometry></collision></link>\n";
+      if (l == 0) continue;
+      const bool prismatic = unit(rng) < 0.2;
+      const char* axes[] = {"1 0 0", "0 1 0", "0 0 1"};
+      urdf << "  <joint name=\"j" << l << "\" type=\"" << (prismatic ? "prismatic" : "revolute")
+           << "\"><parent link=\"l" << l - 1 << "\"/><child link=\"l" << l
+           << "\"/><origin xyz=\"0 0 " << length << "\" rpy=\""
+           << (unit(rng) < 0.5 ? 0.0 : M_PI / 2) << " 0 " << (unit(rng) < 0.5 ? 0.0 : 0.7)
+           << "\"/><axis xyz=\"" << axes[std::uniform_int_distribution<int>(0, 2)(rng)]
+           << "\"/><limit lower=\"" << (prismatic ? -0.3 * length : -2.5) << "\" upper=\""
+           << (prismatic ? 0.3 * length : 2.5) << "\" effort=\"1\" velocity=\"1\"/></joint>\n";
+    }
+    urdf << "</robot>\n";
+    std::ofstream(dir + "/arm.urdf") << urdf.str();
+    yaml << "robot:\n  urdf: arm.urdf\n";
+    size = links * length;
+    what << "generated arm of " << links << " links (" << shapes << ")";
+  } else if (kind == 4 || kind == 3) {
     arm = true;
     std::string urdf, srdf;
     if (kind == 4 && !options.panda_dir.empty()) {
@@ -222,6 +272,7 @@ inline Case makeCase(std::mt19937_64& rng, const DifferentialOptions& options, s
     size = logUniform(rng, 0.01, 100.0);
     std::string shape;
     const std::string file = writeShape(rng, dir, "robot", size, &shape);
+    c.shells |= isShell(shape);
     const bool center = unit(rng) < 0.5, keep_root = unit(rng) < 0.7;
     yaml << "robot:\n  mesh: " << file << "\n  center_vertices: " << (center ? "true" : "false")
          << "\n  keep_root_transform: " << (keep_root ? "true" : "false") << "\n";
@@ -237,11 +288,13 @@ inline Case makeCase(std::mt19937_64& rng, const DifferentialOptions& options, s
   }
   // The environment: objects of a tenth to one robot size, in a cube of four robot sizes (arms:
   // in front of them, within a metre).
-  const double half = arm ? 0.8 : 2.0 * size;
-  const Eigen::Vector3d centre = arm ? Eigen::Vector3d(0.3, 0.0, 0.5) : Eigen::Vector3d::Zero();
+  const bool shipped_arm = arm && !generated_arm;
+  const double half = shipped_arm ? 0.8 : (generated_arm ? 0.7 : 2.0) * size;
+  const Eigen::Vector3d centre =
+      shipped_arm ? Eigen::Vector3d(0.3, 0.0, 0.5) : Eigen::Vector3d::Zero();
   yaml << "environment:\n";
   const int objects = std::uniform_int_distribution<int>(2, 6)(rng);
-  const double scale = arm ? 0.5 : size;
+  const double scale = shipped_arm ? 0.5 : (generated_arm ? 0.3 : 1.0) * size;
   int clouds = 0, meshes = 0, primitives = 0;
   for (int k = 0; k < objects; ++k) {
     const Eigen::Vector3d at =
@@ -274,6 +327,7 @@ inline Case makeCase(std::mt19937_64& rng, const DifferentialOptions& options, s
       ++meshes;
       std::string shape;
       const std::string file = writeShape(rng, dir, "object" + std::to_string(k), s, &shape);
+      c.shells |= isShell(shape);
       yaml << "    mesh: {file: " << file
            << ", keep_root_transform: " << (unit(rng) < 0.5 ? "true" : "false") << "}\n"
            << pose;
@@ -294,8 +348,8 @@ inline Case makeCase(std::mt19937_64& rng, const DifferentialOptions& options, s
   }
   what << "; " << primitives << " primitives, " << meshes << " meshes, " << clouds << " clouds";
   // The octree settings.
-  const double resolution =
-      arm ? std::vector<double>{0.01, 0.02, 0.04}[index % 3] : size / logUniform(rng, 6.0, 40.0);
+  const double resolution = shipped_arm ? std::vector<double>{0.01, 0.02, 0.04}[index % 3]
+                                        : size / logUniform(rng, 6.0, 40.0);
   const double link_ratio =
       std::vector<double>{1.0, 0.5, 0.25, 0.125}[std::uniform_int_distribution<int>(0, 3)(rng)];
   // The path by turns, independently of the robot's kind (index % 5): conservative fused,
@@ -310,6 +364,10 @@ inline Case makeCase(std::mt19937_64& rng, const DifferentialOptions& options, s
   c.overrides.rounding = centre_rounding ? Rounding::kCenter : Rounding::kConservative;
   c.overrides.checker = fused ? "octree-fused" : "octree";
   c.overrides.exact_primitives = exact;
+  // Self-pair tables where they are cheap to build (octo7: one small table, in well under a
+  // second), conservative rounding only.
+  const bool octo7 = what.str().rfind("octo7", 0) == 0;
+  c.overrides.self_pair_tables = octo7 && !centre_rounding && unit(rng) < 0.5;
   if (!arm) {
     const Eigen::Vector3d lo = centre - Eigen::Vector3d::Constant(half + size);
     const Eigen::Vector3d hi = centre + Eigen::Vector3d::Constant(half + size);
@@ -326,8 +384,123 @@ inline std::string pathName(const Case& c, bool exact_applied) {
   std::string name = *c.overrides.rounding == Rounding::kCenter ? "center" : "conservative";
   name += *c.overrides.checker == "octree" ? " moveTree" : " fused";
   if (exact_applied) name += " exact-primitives";
+  if (c.overrides.self_pair_tables.value_or(false)) name += " self-pair-tables";
   return name;
 }
+
+// FCL's meshes are surfaces (docs/validation.md, "The reference"): a body wholly inside a closed
+// mesh, or a closed mesh wholly inside a body, does not collide for FCL although the solids
+// overlap, and the octree fills closed meshes. Such a state is neither a missed contact nor a
+// margin violation; it is told apart by testing one point of each body against the other
+// body's solids (primitives, and meshes that are closed manifolds, by ray parity).
+class Solids {
+ public:
+  Solids(const PlanningScene& scene) : robot_(scene.model->robot()) {
+    CollisionMeshes meshes(scene.spec.robot.keep_mesh_root_transform,
+                           scene.spec.robot.center_mesh_vertices);
+    links_.resize(static_cast<std::size_t>(robot_.linkCount()));
+    for (int l = 0; l < robot_.linkCount(); ++l) {
+      for (const CollisionElement& e : robot_.link(l).collision) {
+        Part part;
+        part.X = e.X_LE;
+        if (const auto* prim = std::get_if<Primitive>(&e.geometry)) {
+          part.primitive = *prim;
+        } else {
+          const TriangleMesh& mesh = meshes.get(std::get<MeshRef>(e.geometry));
+          part.mesh = std::make_shared<TriangleMesh>(mesh);
+          part.solid = isClosedManifold(mesh);
+        }
+        links_[static_cast<std::size_t>(l)].push_back(std::move(part));
+      }
+    }
+    for (const auto& item : scene.environment->items()) {
+      Part part;
+      part.X = item.spec.X_WO;
+      if (item.spec.kind == EnvironmentObject::Kind::kPrimitive) {
+        part.primitive = item.spec.primitive;
+      } else if (item.spec.kind == EnvironmentObject::Kind::kMesh) {
+        part.mesh = std::make_shared<TriangleMesh>(item.mesh);
+        part.solid = isClosedManifold(item.mesh);
+      } else {
+        for (const Eigen::Vector3f& p : item.points_W) cloud_points_.push_back(p.cast<double>());
+        continue;
+      }
+      objects_.push_back(std::move(part));
+    }
+  }
+
+  // With the link poses of `data`: is a link inside an object's solid or the reverse?
+  bool environmentNested(const RobotData& data) const {
+    for (int l = 0; l < robot_.linkCount(); ++l) {
+      const Eigen::Isometry3d& X_WL = data.linkPose(l);
+      for (const Part& link_part : links_[static_cast<std::size_t>(l)]) {
+        const Eigen::Isometry3d X_W = X_WL * link_part.X;
+        for (const Part& object : objects_) {
+          if (inside(object, object.X, point(link_part, X_W))) return true;
+          if (inside(link_part, X_W, point(object, object.X))) return true;
+        }
+        for (const Eigen::Vector3d& p : cloud_points_) {
+          if (inside(link_part, X_W, p)) return true;
+        }
+      }
+    }
+    return false;
+  }
+
+  bool selfNested(const RobotData& data) const {
+    for (const auto& [a, b] : robot_.checkedPairs()) {
+      for (const Part& pa : links_[static_cast<std::size_t>(a)]) {
+        for (const Part& pb : links_[static_cast<std::size_t>(b)]) {
+          const Eigen::Isometry3d Xa = data.linkPose(a) * pa.X, Xb = data.linkPose(b) * pb.X;
+          if (inside(pa, Xa, point(pb, Xb)) || inside(pb, Xb, point(pa, Xa))) return true;
+        }
+      }
+    }
+    return false;
+  }
+
+ private:
+  struct Part {
+    Eigen::Isometry3d X = Eigen::Isometry3d::Identity();  // link or world frame of the part
+    std::optional<Primitive> primitive;
+    std::shared_ptr<const TriangleMesh> mesh;
+    bool solid = false;
+  };
+
+  static Eigen::Vector3d point(const Part& part, const Eigen::Isometry3d& X_W) {
+    return part.mesh ? Eigen::Vector3d(X_W * part.mesh->vertices.front()) : X_W.translation();
+  }
+
+  // Parity of the crossings of a ray in a fixed generic direction (Moeller-Trumbore).
+  static bool inside(const Part& part, const Eigen::Isometry3d& X_W, const Eigen::Vector3d& p_W) {
+    const Eigen::Vector3d p = X_W.inverse() * p_W;
+    if (part.primitive) return containsPoint(*part.primitive, p);
+    if (!part.solid) return false;
+    const Eigen::Vector3d d = Eigen::Vector3d(0.5477, 0.3211, 0.7734).normalized();
+    bool odd = false;
+    const TriangleMesh& m = *part.mesh;
+    for (const auto& t : m.triangles) {
+      const Eigen::Vector3d& a = m.vertices[t[0]];
+      const Eigen::Vector3d e1 = m.vertices[t[1]] - a, e2 = m.vertices[t[2]] - a;
+      const Eigen::Vector3d h = d.cross(e2);
+      const double det = e1.dot(h);
+      if (std::abs(det) < 1e-300) continue;
+      const Eigen::Vector3d sv = p - a;
+      const double u = sv.dot(h) / det;
+      if (u < 0 || u > 1) continue;
+      const Eigen::Vector3d qv = sv.cross(e1);
+      const double v = d.dot(qv) / det;
+      if (v < 0 || u + v > 1) continue;
+      if (e2.dot(qv) / det > 0) odd = !odd;
+    }
+    return odd;
+  }
+
+  const RobotModel& robot_;
+  std::vector<std::vector<Part>> links_;
+  std::vector<Part> objects_;
+  std::vector<Eigen::Vector3d> cloud_points_;
+};
 
 }  // namespace differential_detail
 
@@ -357,13 +530,14 @@ inline DifferentialReport runDifferential(const DifferentialOptions& options) {
     const bool centre = octree.rounding() == Rounding::kCenter;
     const Resolutions r = resolutionsOf(octree);
     // docs/validation.md §2-3: the margin of each path.
+    const double s3 = std::sqrt(3.0);
+    const double centre_env = c.shells ? s3 / 2 * r.environment + s3 * r.link : s3 / 2 * r.link;
+    const double centre_self = c.shells ? 1.5 * s3 * r.self_link : s3 / 2 * r.self_link;
     const double delta_env =
-        (centre ? std::sqrt(3.0) / 2 * r.link
-                : std::sqrt(3.0) * ((only_primitives ? 0.0 : r.environment) + r.link)) +
+        (centre ? centre_env : s3 * ((only_primitives ? 0.0 : r.environment) + r.link)) +
         kTieSlack * std::max(1.0, r.environment);
     const double delta_self =
-        (centre ? std::sqrt(3.0) / 2 * r.self_link : 2 * std::sqrt(3.0) * r.self_link) +
-        kTieSlack * std::max(1.0, r.environment);
+        (centre ? centre_self : 2 * s3 * r.self_link) + kTieSlack * std::max(1.0, r.environment);
     const CheckerPath path = checkerPathFromName(*c.overrides.checker);
     PathTally& tally = report.paths[pathName(c, exact_applied)];
     ++tally.cases;
@@ -372,7 +546,19 @@ inline DifferentialReport runDifferential(const DifferentialOptions& options) {
     auto exact = fcl.makeScratch();
     const std::vector<Sample> samples = uniformSamples(scene, options.states_per_case, rng());
     const RobotModel& robot = octree.robot();
+    const Solids solids(scene);
     std::size_t case_missed = 0, case_beyond = 0;
+    std::string first;  // the first failing state of the case
+    auto note = [&](const Sample& s, const std::string& what) {
+      if (!first.empty()) return;
+      std::ostringstream out;
+      out.precision(17);
+      out << what << " at q = [";
+      for (std::size_t k = 0; k < s.q.size(); ++k) out << (k ? ", " : "") << s.q[k];
+      out << "], xyz = [" << s.X_WB.translation().transpose() << "], quat (xyzw) = ["
+          << Eigen::Quaterniond(s.X_WB.linear()).coeffs().transpose() << "]";
+      first = out.str();
+    };
     for (const Sample& s : samples) {
       fcl.setConfiguration(s.q.data(), s.q.size(), s.X_WB, *exact);
       const bool fe = fcl.environmentInCollision(*exact);
@@ -382,19 +568,37 @@ inline DifferentialReport runDifferential(const DifferentialOptions& options) {
       const bool os = octree.selfInCollision(path, scratch);
       tally.fcl_env += fe;
       tally.fcl_self += fs;
-      if (fe && !oe) ++tally.missed_env, case_missed += !centre;
-      if (fs && !os) ++tally.missed_self, case_missed += !centre;
+      if (fe && !oe) {
+        ++tally.missed_env;
+        if (!centre) ++case_missed, note(s, "missed environment contact");
+      }
+      if (fs && !os) {
+        ++tally.missed_self;
+        if (!centre) ++case_missed, note(s, "missed self contact");
+      }
       if (oe && !fe) {
         ++tally.extra_env;
         const double d = fcl.environmentDistance(*exact, 2 * delta_env);
-        tally.ratio.push_back(d / delta_env);
-        if (d > delta_env) ++tally.beyond, ++case_beyond;
+        if (d <= delta_env) tally.ratio.push_back(d / delta_env);
+        if (d > delta_env && solids.environmentNested(scratch.robot)) {
+          ++tally.inside_solid;
+        } else if (d > delta_env) {
+          ++tally.beyond, ++case_beyond;
+          note(s, "environment rejected at FCL distance " + std::to_string(d) + " > " +
+                      std::to_string(delta_env));
+        }
       }
       if (os && !fs) {
         ++tally.extra_self;
         const double d = fcl.selfDistance(*exact, 2 * delta_self);
-        tally.ratio.push_back(d / delta_self);
-        if (d > delta_self) ++tally.beyond, ++case_beyond;
+        if (d <= delta_self) tally.ratio.push_back(d / delta_self);
+        if (d > delta_self && solids.selfNested(scratch.robot)) {
+          ++tally.inside_solid;
+        } else if (d > delta_self) {
+          ++tally.beyond, ++case_beyond;
+          note(s, "self pair rejected at FCL distance " + std::to_string(d) + " > " +
+                      std::to_string(delta_self));
+        }
       }
     }
     tally.states += samples.size();
@@ -403,7 +607,7 @@ inline DifferentialReport runDifferential(const DifferentialOptions& options) {
       report.failures.push_back(c.scene_file + " (" + pathName(c, exact_applied) + "; " +
                                 c.description + "): " + std::to_string(case_missed) +
                                 " missed contacts, " + std::to_string(case_beyond) +
-                                " rejections beyond the margin");
+                                " rejections beyond the margin; first: " + first);
     }
     if (options.log) {
       *options.log << "case " << index << " " << pathName(c, exact_applied) << ": " << c.description
@@ -419,8 +623,9 @@ inline std::string formatReport(DifferentialReport report) {
   std::ostringstream out;
   out << report.cases << " cases, " << report.states << " states\n"
       << "| path | cases | states | FCL contacts env / self | missed env / self | rejected free "
-         "env / self | their distance / margin: median, p90, p99, max | beyond the margin |\n"
-      << "|---|--:|--:|--:|--:|--:|--:|--:|\n";
+         "env / self | within the margin: distance / margin, median, p90, p99, max | beyond the "
+         "margin | one solid inside another |\n"
+      << "|---|--:|--:|--:|--:|--:|--:|--:|--:|\n";
   out.precision(3);
   for (auto& [name, t] : report.paths) {
     std::sort(t.ratio.begin(), t.ratio.end());
@@ -430,7 +635,7 @@ inline std::string formatReport(DifferentialReport report) {
     out << "| " << name << " | " << t.cases << " | " << t.states << " | " << t.fcl_env << " / "
         << t.fcl_self << " | " << t.missed_env << " / " << t.missed_self << " | " << t.extra_env
         << " / " << t.extra_self << " | " << q(0.5) << ", " << q(0.9) << ", " << q(0.99) << ", "
-        << q(1.0) << " | " << t.beyond << " |\n";
+        << q(1.0) << " | " << t.beyond << " | " << t.inside_solid << " |\n";
   }
   for (const std::string& f : report.failures) out << "FAILURE: " << f << "\n";
   return out.str();
