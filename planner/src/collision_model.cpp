@@ -12,7 +12,6 @@
 #include <system_error>
 #include <thread>
 
-#include "octomotion/planner/collision_meshes.h"
 #include "octomotion/motion/box_overlap.h"
 #include "octomotion/motion/collides.h"
 #include "octomotion/motion/move_tree.h"
@@ -23,6 +22,7 @@
 #include "octomotion/octree/shapes.h"
 #include "octomotion/octree/traversal.h"
 #include "octomotion/octree/voxelize.h"
+#include "octomotion/planner/collision_meshes.h"
 #include "self_pair_tables.h"
 
 namespace octomotion {
@@ -208,8 +208,10 @@ OctreeCollisionModel::LinkVoxels OctreeCollisionModel::voxelizeLink(
         if (black_L.isEmpty() || (p_L.array() < black_L.min().array() - tie).any() ||
             (p_L.array() > black_L.max().array() + tie).any()) {
           throw Error("link '" + link.name + "': its source tree (" +
-                      std::to_string(grid.voxelSize()) + " m voxels) does not hold its collision "
-                      "geometry (a vertex of element " + std::to_string(k) + " lies outside)");
+                      std::to_string(grid.voxelSize()) +
+                      " m voxels) does not hold its collision "
+                      "geometry (a vertex of element " +
+                      std::to_string(k) + " lies outside)");
         }
       }
     }

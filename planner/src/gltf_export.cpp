@@ -14,11 +14,11 @@
 #include <assimp/scene.h>
 #include <assimp/Exporter.hpp>
 
-#include "octomotion/planner/collision_meshes.h"
 #include "octomotion/error.h"
 #include "octomotion/input_limits.h"
 #include "octomotion/motion/move_tree.h"
 #include "octomotion/octree/mesh.h"
+#include "octomotion/planner/collision_meshes.h"
 
 namespace octomotion {
 
@@ -488,8 +488,7 @@ GltfExportReport exportGlb(const OctreeCollisionModel& model, const std::vector<
     std::vector<std::unique_ptr<aiNode>> children;
     materials.push_back(makeMaterial("robot", kRobotColor));
     const auto robot_material = static_cast<unsigned>(materials.size() - 1);
-    CollisionMeshes robot_meshes(options.keep_mesh_root_transform,
-                                         options.center_mesh_vertices);
+    CollisionMeshes robot_meshes(options.keep_mesh_root_transform, options.center_mesh_vertices);
     for (int i = 0; i < robot.linkCount(); ++i) {
       const Link& link = robot.link(i);
       if (!link.hasCollision()) continue;

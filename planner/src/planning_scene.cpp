@@ -27,8 +27,8 @@
 #include <ompl/util/Exception.h>
 #include <ompl/util/RandomNumbers.h>
 
-#include "octomotion/planner/collision_meshes.h"
 #include "octomotion/octree/mesh.h"
+#include "octomotion/planner/collision_meshes.h"
 #include "octomotion/planner/octree_validity_checker.h"
 
 namespace octomotion {
