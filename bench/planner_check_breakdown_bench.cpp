@@ -1,8 +1,8 @@
 // Where an arm's octree check spends its time, split by what the answers are (docs/trade-off.md,
-// "Why the misses"): uniform states are sorted into free / false positive (environment or self)
-// / colliding with the environment / colliding with itself only, by FCL's and the fused octree
-// checker's answers, and each class gets its mean forward-kinematics, environment-half and
-// self-half time next to FCL's full check of the same states. A plain program (like
+// "Reading the results"): uniform states are sorted into free / false positive (environment or
+// self) / colliding with the environment / colliding with itself only, by FCL's and the fused
+// octree checker's answers, and each class gets its mean forward-kinematics, environment-half
+// and self-half time next to FCL's full check of the same states. A plain program (like
 // tradeoff_bench): the numbers are per-class means, each phase timed with steady_clock (~20 ns
 // of clock reads per phase), the states checked twice and the second pass kept. Usage:
 //   build/bench/planner_check_breakdown_bench SCENE RESOLUTION [SELF_RATIO] [STATES]

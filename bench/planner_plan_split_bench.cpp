@@ -1,4 +1,4 @@
-// Where a planner's time goes, per checker (docs/trade-off.md, "Why the misses"): the scene's
+// Where a planner's time goes, per checker (docs/trade-off.md, "Reading the results"): the scene's
 // problem is solved RUNS times with the fused octree checker and with FCL, and each solve is
 // split into the time spent in the state validity checker and the rest (sampling,
 // nearest-neighbour queries, interpolation, the motion validator's bookkeeping). Then what

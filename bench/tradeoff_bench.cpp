@@ -1,12 +1,15 @@
-// The speed/accuracy trade study (issue #5) over every scene in robots/scenes/*.yaml: each
+// The speed/accuracy trade study (docs/trade-off.md) over every scene in robots/scenes/*.yaml: each
 // octree setting (resolution x rounding x checker path), FCL and FCL+OctoMap on the same uniform
 // states, and planning with ompl::tools::Benchmark. A plain program rather than a Google
 // Benchmark one: every measurement is a distribution over a state set (medians, p90, means and
 // error rates per setting), which the library computes itself. Run from the repository root:
 //   build/bench/tradeoff_bench --out-dir docs/trade-off
-//   scripts/plot_tradeoff.sh docs/trade-off
+//   scripts/plot_tradeoff.sh docs/trade-off          (SCENE_tradeoff.png, SCENE_planning.png)
+//   scripts/tradeoff_summary.py docs/trade-off       (per-scene markdown tables)
 // Writes checks.csv, planning.csv, results.md (tables + targets), SCENE_tradeoff.dat and
 // SCENE_planning.dat (gnuplot data) and logs/*.log (ompl_benchmark_statistics.py reads them).
+// The output folders (docs/trade-off/, the default tradeoff-results/) are not kept in git:
+// these commands regenerate them; docs/trade-off.md lists the study's commands.
 #include <algorithm>
 #include <chrono>
 #include <cmath>

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Per-scene summary of a trade study for docs/trade-off.md.
+"""Per-scene summary of a trade study, as markdown tables.
 
 Reads the study's checks.csv and planning.csv (runTradeStudy's output, kCheckCsvColumns) and
 prints, for every scene: FCL's reference line, one row per resolution comparing the fused
@@ -9,6 +9,10 @@ octree is the study's paired ratio (speedup_vs_fcl, FCL timed right before each 
 env / octree env its env_speedup_vs_fcl_octomap.
 
 usage: scripts/tradeoff_summary.py STUDY_DIR [IMAGE_PREFIX]   (IMAGE_PREFIX default: trade-off/)
+
+STUDY_DIR is a --out-dir of bench/tradeoff_bench or `octomotion bench` (docs/trade-off.md,
+"Commands"); IMAGE_PREFIX is where the tables link the plots that scripts/plot_tradeoff.sh
+draws. Study directories are not kept in git: the study's commands regenerate them.
 """
 import csv
 import sys

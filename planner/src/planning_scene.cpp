@@ -255,7 +255,8 @@ PlanningScene loadPlanningScene(const std::string& scene_path, const SceneOverri
   options.link_resolution = spec.octree.link_resolution;
   // The moveTree path materialises every source leaf of every link per query, so link trees
   // 4x finer (the library's default, made for the fused query, which descends only near
-  // contacts) cost it ~5-15x; it keeps the link trees at the voxel unless the scene says.
+  // contacts) cost it several times over; it keeps the link trees at the voxel unless the scene
+  // says.
   if (!options.link_resolution && spec.octree.checker == "octree") {
     options.link_resolution = options.resolution;
   }

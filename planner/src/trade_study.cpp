@@ -160,7 +160,7 @@ using CheckFn = std::function<bool(std::size_t)>;
 constexpr int kTimedRounds = 5;
 
 // The passes over the states: each check timed alone (wall clock, for the medians and the
-// 90th percentiles; includes ~20-40 ns of clock reads), then kTimedRounds rounds of whole
+// 90th percentiles; includes the clock reads), then kTimedRounds rounds of whole
 // passes in thread CPU time (the means): each round times the reference's full check (when
 // given) right before this checker's, so their ratio is taken on the same machine state, then
 // the environment-only pass likewise after `env_reference`'s (when given). mean_us and
@@ -333,10 +333,10 @@ double property(const std::map<std::string, std::string>& run, const std::string
 
 // The planner under study, timed from inside: Benchmark's "time REAL" also holds its own
 // machinery of each run (it solves through Planner::solve(fn, 0.1), whose termination condition
-// is evaluated by a thread that sleeps in 1 ms steps and is joined when the solve returns:
-// 0.4-1 ms per run here, bench/planner_plan_split_bench), a third of the octree's median
-// RRTConnect solve in the easiest arm scene. The post-run event writes the wrapped planner's own
-// solve time next to it ("solve time REAL").
+// is evaluated by a thread that sleeps in 1 ms steps and is joined when the solve returns, so
+// every run pays up to a millisecond; bench/planner_plan_split_bench measures it), which weighs
+// on solves of a few milliseconds. The post-run event writes the wrapped planner's own solve
+// time next to it ("solve time REAL").
 // Everything else is the wrapped planner's: name, specs, parameters and progress properties (the
 // latter two hold callbacks bound to it), problem definition, set-up and planner data.
 constexpr const char* kSolveTimeProperty = "solve time REAL";  // written per run, read back below

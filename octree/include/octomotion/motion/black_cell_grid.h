@@ -17,7 +17,7 @@ namespace octomotion {
 class BlackCellGrid {
  public:
   // The grid of `tree`'s cells at the finest level whose grid has at most `max_cells` cells
-  // (a bit each): 2^21 bits is 256 KiB, kept in L2 cache on the machines we measure.
+  // (a bit each): 2^21 bits is 256 KiB, small enough to stay in a typical L2 cache.
   static constexpr std::size_t kDefaultMaxCells = std::size_t{1} << 21;
   explicit BlackCellGrid(const Octree& tree, std::size_t max_cells = kDefaultMaxCells);
 

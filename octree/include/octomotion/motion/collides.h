@@ -52,22 +52,19 @@ class MovableSource {
  public:
   // A gray source piece is split into its children only when it is more than `expand_factor`
   // times larger than the target cell it is tested against (>= 1).
-  //  - kExpandFactorDefault: measured on links against environments (a 26 cm link in a
-  //    cluttered room; octo7 against the bookshelf at 5 mm and 1 cm, link trees at 1 to 1/8 of
-  //    the environment voxel): keeping the source whole until black cells are reached (then
-  //    probeBelow descends it) beats eager splitting, whose cost is making and testing many
-  //    small pieces.
+  //  - kExpandFactorDefault: for links against environments, keeping the source whole until
+  //    black cells are reached (then probeBelow descends it) beats eager splitting, whose cost
+  //    is making and testing many small pieces.
   //  - kExpandFactorDeepPairs: a link's self-collision tree at least kDeepPairLevels deep,
-  //    moved onto another link's tree of the same resolution (1.25 mm and finer on octo6/octo7;
-  //    OctreeCollisionModel picks it per self tree): two solid shapes that are
-  //    close along a whole joint need tight pieces early; 25-55 % fewer cycles per check there
-  //    (at 7 levels the two factors tie, at 6 and fewer the default wins by 10-40 %).
+  //    moved onto another link's tree of the same resolution (OctreeCollisionModel picks it per
+  //    self tree): two solid shapes that are close along a whole joint need tight pieces early.
+  //    Shallower trees do better with the default.
   //  - kExpandFactorSparse: a node whose black voxels fill less than kSparseFill of its box
   //    (the X of a drone's arms, the two legs of an L bar) is split at this factor when it is
   //    smaller: its box is mostly air, and testing it whole against the cells of a nearby wall
-  //    costs more than its few children do (callgrind over 20,000 uniform states: rooms 2 cm
-  //    24 % fewer instructions per check, narrow_passage 5 mm 28 %, but 2 cm +6 % and rooms
-  //    32 cm +2 %; arm links fill 50-100 % of their boxes and are unaffected).
+  //    costs more than its few children do. Solid links fill most of their boxes and are
+  //    unaffected.
+  //  bench/motion_bench measures the query (docs/planner.md, "Tuned constants").
   static constexpr double kExpandFactorDefault = 8.0;
   static constexpr double kExpandFactorDeepPairs = 2.0;
   static constexpr double kExpandFactorSparse = 2.0;
@@ -132,14 +129,11 @@ class CollisionScratch {
 // `clearance` (optional, either rounding): the environment's ClearanceGrid; before the descent
 // the moved source is split (at most kClearanceSplits nodes, breadth first) into pieces, and a
 // piece whose bounding sphere lies within the clearance at its centre is dropped (same answer;
-// a free pose near an obstacle descends only what is near it). Four splits, callgrind over
-// 20,000 uniform drone states (grid of 2^18 cells): rooms 4 cm 114M -> 78M instructions, 2 cm
-// 88M -> 70M, narrow_passage 4 and 2 cm -11 %, the arms' scenes 0 to -2 %; eight splits cost the
-// colliding states more than they save the free ones (narrow_passage +7 to +14 % over four).
-// The pieces are kept for the descent even when not all are clear (falling back to the whole
-// source then costs rooms 4 cm 42 % more instructions); a pose in collision pays for them when
-// the BlackCellGrid's probes miss (motion_bench: colliding medians 1.2-1.8x slower without a
-// BlackCellGrid, free medians 2-2.4x faster).
+// a free pose near an obstacle descends only what is near it). The split budget is small
+// because more pieces make a contact that the BlackCellGrid's probes miss dearer to find. The
+// pieces are kept for the descent even when not all are clear: the pieces left are tighter
+// than the whole source, so the descent starts closer to the obstacle. bench/motion_bench
+// (FusedWithClearanceGrid) measures the query with and without the grid.
 constexpr int kClearanceSplits = 4;
 bool collides(const MovableSource& source, const Eigen::Isometry3d& X_WS, const Octree& environment,
               Rounding rounding, CollisionScratch& scratch, Cube* witness = nullptr,

@@ -1,8 +1,8 @@
-// The speed/accuracy trade study (issue #5): for one scene, every octree setting (resolution x
-// rounding x checker path) and the FCL references are run on the same uniformly sampled states
-// in the same process, so their times are comparable and their answers can be scored against
-// FCL's exact one. Planning is measured with ompl::tools::Benchmark, whose .log files
-// ompl_benchmark_statistics.py and Planner Arena read.
+// The speed/accuracy trade study (docs/trade-off.md): for one scene, every octree setting
+// (resolution x rounding x checker path) and the FCL references are run on the same uniformly
+// sampled states in the same process, so their times are comparable and their answers can be
+// scored against FCL's exact one. Planning is measured with ompl::tools::Benchmark, whose .log
+// files ompl_benchmark_statistics.py and Planner Arena read.
 #pragma once
 
 #include <cstdint>
@@ -101,7 +101,7 @@ struct PlanRow {
   unsigned runs = 0, solved = 0;  // exact solutions
   double median_time = 0;         // seconds, over every run (unsolved ones count the limit)
   // The same for the planner's own solve, without what Benchmark's "time REAL" adds to every
-  // run (its termination-condition thread, 0.4-1 ms here); the logs' "solve time REAL".
+  // run (its termination-condition thread, up to 1 ms); the logs' "solve time REAL".
   double median_solve_time = 0;
   double median_first_solution = -1;  // seconds, solved runs, from Benchmark's progress data
   double median_length = -1;          // simplified path length, solved runs; -1 if none
@@ -143,8 +143,8 @@ void writeMarkdown(const TradeStudyResult& result, std::ostream& out);
 void writeTradeoffPlotData(const TradeStudyResult& result, std::ostream& out);
 void writePlanningPlotData(const TradeStudyResult& result, std::ostream& out);
 
-// The targets of issue #5 evaluated on one scene's rows: one markdown bullet per target with the
-// measured ratio and margin.
+// The study's targets (docs/trade-off.md, "Targets") evaluated on one scene's rows: one
+// markdown bullet per target with the measured ratio and margin.
 void writeTargets(const TradeStudyResult& result, std::ostream& out);
 
 }  // namespace octomotion
