@@ -350,13 +350,15 @@ inline Case makeCase(std::mt19937_64& rng, const DifferentialOptions& options, s
   // The octree settings.
   const double resolution = shipped_arm ? std::vector<double>{0.01, 0.02, 0.04}[index % 3]
                                         : size / logUniform(rng, 6.0, 40.0);
-  const double link_ratio =
-      std::vector<double>{1.0, 0.5, 0.25, 0.125}[std::uniform_int_distribution<int>(0, 3)(rng)];
   // The path by turns, independently of the robot's kind (index % 5): conservative fused,
   // conservative moveTree, centre (fused or moveTree), conservative fused, conservative moveTree.
   const std::size_t turn = (index / 5 + index) % 5;
   const bool centre_rounding = turn == 2;
   const bool fused = turn == 0 || turn == 3 || (turn == 2 && index % 2 == 0);
+  // Link trees from the environment's voxel down to an eighth of it; the moveTree path, which
+  // builds a world tree per link and state, to half of it (finer ones take minutes a case).
+  const double link_ratio = std::vector<double>{
+      1.0, 0.5, 0.25, 0.125}[std::uniform_int_distribution<int>(0, fused ? 3 : 1)(rng)];
   const bool exact = !centre_rounding && primitives > 0 && unit(rng) < 0.3;
   c.overrides.resolution = resolution;
   c.overrides.link_resolution = resolution * link_ratio;
