@@ -1,4 +1,4 @@
-// Randomised differential validation against exact FCL (docs/validation.md §5): generated robots
+// Randomised differential validation against exact FCL (docs/validation.md §6): generated robots
 // and environments, random resolutions, roundings and checker paths, a million states by default.
 // Prints, per checker path, the missed contacts (none allowed with conservative rounding) and
 // the rejected free states' FCL distances as a fraction of the path's margin; exits 1 on any

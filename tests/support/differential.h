@@ -1,4 +1,4 @@
-// Randomised differential validation against FCL (docs/validation.md §5): scenes the project did
+// Randomised differential validation against FCL (docs/validation.md §6): scenes the project did
 // not author, generated from a seed, checked state by state by the octree model and by exact FCL.
 // Each case draws a robot — a generated rigid body (closed, double-sided, open or soup meshes of
 // 1 cm to 100 m, written as STL, OBJ or COLLADA with node transforms, units and up axes), a

@@ -1,4 +1,4 @@
-// The randomised differential validation (docs/validation.md §5, bench/validation_differential_
+// The randomised differential validation (docs/validation.md §6, bench/validation_differential_
 // bench for millions of states), bounded: a fixed seed, generated rigid bodies of 1 cm to 100 m
 // in generated environments, the shipped arms and the real Panda (when ../shared/data holds it),
 // every checker path. No missed contact with conservative rounding, and no rejected free state
