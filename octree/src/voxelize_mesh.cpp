@@ -335,10 +335,10 @@ class MeshDescent {
       // A triangle reaching into the voxel (kFaceTie) makes it black. An untouched voxel takes
       // the status of the middle, one of its corners. A voxel some triangle only grazes (it
       // passes within kFaceTie of the boundary, e.g. a face lying on a voxel face) is black when
-      // its centre is in the solid, and also when a grazing triangle is not covered by the
-      // closed voxel across the face it lies on (coveredAcross): the surface itself must always
-      // lie in a closed black voxel, also where parity sees no inside on either side of it (a
-      // double-sided sheet, an open mesh).
+      // its centre is in the solid, and also when a grazing triangle is held by no black voxel
+      // across the face, edge or corner it lies on (coveredAcross): the surface itself must
+      // always lie in a closed black voxel, also where parity sees no inside on either side of
+      // it (a double-sided sheet, an open mesh).
       grazers_.clear();
       for (std::uint32_t i : candidates) {
         const int level =
