@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "motion_kernel.h"
+#include "internal/kernel.h"
 #include "octomotion/error.h"
 
 namespace octomotion {

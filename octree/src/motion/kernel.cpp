@@ -1,4 +1,4 @@
-#include "motion_kernel.h"
+#include "internal/kernel.h"
 
 #include <string>
 

@@ -1,7 +1,7 @@
 // moveTree: fdleaf / intersect / condense of Weng & Ahuja 1987 §4.
 #include "octomotion/motion/move_tree.h"
 
-#include "motion_kernel.h"
+#include "internal/kernel.h"
 #include "octomotion/octree/octree_builder.h"
 
 namespace octomotion {
