@@ -4,7 +4,7 @@
 
 #include "octomotion/error.h"
 
-namespace octomotion::motion_detail {
+namespace octomotion::detail {
 
 MotionFrame makeMotionFrame(const Eigen::Isometry3d& X_WS, const WorldGrid& source,
                             const WorldGrid& target, const char* what) {
@@ -62,4 +62,4 @@ void addEdgeAxes(MotionFrame& f) {
   }
 }
 
-}  // namespace octomotion::motion_detail
+}  // namespace octomotion::detail
