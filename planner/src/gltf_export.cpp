@@ -14,11 +14,12 @@
 #include <assimp/scene.h>
 #include <assimp/Exporter.hpp>
 
-#include "octomotion/planner/collision_meshes.h"
 #include "octomotion/error.h"
 #include "octomotion/input_limits.h"
 #include "octomotion/motion/move_tree.h"
+#include "octomotion/octree/bits.h"
 #include "octomotion/octree/mesh.h"
+#include "octomotion/planner/collision_meshes.h"
 
 namespace octomotion {
 
@@ -143,8 +144,7 @@ MeshBuffer treeBoxes(const Octree& tree, std::size_t cap, GltfTreeReport& report
     stack.pop_back();
     const OctreeNode& n = nodes[it.node];
     gray[static_cast<std::size_t>(it.level)] += 1;
-    black[static_cast<std::size_t>(it.level - 1)] +=
-        static_cast<std::size_t>(__builtin_popcount(n.black));
+    black[static_cast<std::size_t>(it.level - 1)] += static_cast<std::size_t>(popcount8(n.black));
     for (int k = 0; k < 8; ++k) {
       if (n.gray & (1u << k)) stack.push_back({n.childIndex(k), it.level - 1});
     }
@@ -488,8 +488,7 @@ GltfExportReport exportGlb(const OctreeCollisionModel& model, const std::vector<
     std::vector<std::unique_ptr<aiNode>> children;
     materials.push_back(makeMaterial("robot", kRobotColor));
     const auto robot_material = static_cast<unsigned>(materials.size() - 1);
-    CollisionMeshes robot_meshes(options.keep_mesh_root_transform,
-                                         options.center_mesh_vertices);
+    CollisionMeshes robot_meshes(options.keep_mesh_root_transform, options.center_mesh_vertices);
     for (int i = 0; i < robot.linkCount(); ++i) {
       const Link& link = robot.link(i);
       if (!link.hasCollision()) continue;

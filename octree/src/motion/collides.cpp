@@ -6,6 +6,7 @@
 
 #include "internal/kernel.h"
 #include "octomotion/error.h"
+#include "octomotion/octree/bits.h"
 
 namespace octomotion {
 
@@ -208,10 +209,10 @@ class Query {
       ++splits;
       const Node& n = nodes_[it.node];
       for (std::uint8_t m = n.black; m; m &= static_cast<std::uint8_t>(m - 1)) {
-        todo.push_back(leafItem(it.node, __builtin_ctz(m)));
+        todo.push_back(leafItem(it.node, lowestBit(m)));
       }
       for (std::uint8_t m = n.gray; m; m &= static_cast<std::uint8_t>(m - 1)) {
-        todo.push_back(nodeItem(n.childIndex(__builtin_ctz(m))));
+        todo.push_back(nodeItem(n.childIndex(lowestBit(m))));
       }
     }
   }
@@ -233,7 +234,7 @@ class Query {
   }
 
   static std::uint32_t envChild(const OctreeNode& n, int k) {
-    return n.first_child + static_cast<std::uint32_t>(detail::popcount8(n.gray & ((1u << k) - 1u)));
+    return n.first_child + static_cast<std::uint32_t>(childRank(n.gray, k));
   }
 
   // Depth-first parallel descent. The pieces [b, e) of the stack reach `cell`; the callee's
@@ -267,7 +268,7 @@ class Query {
     } pending[8];
     int count = 0;
     for (unsigned m = reach & n.occupied(); m; m &= m - 1) {
-      const int k = __builtin_ctz(m);
+      const int k = lowestBit(m);
       const std::size_t base = out_->size();
       const Cube child = cell.child(k);
       if (!gather(b, e, child, k)) continue;
@@ -314,7 +315,7 @@ class Query {
   bool blackChildren(const Cube& cell, std::size_t b, std::size_t e) {
     const std::size_t top = out_->size();
     for (unsigned m = childMasks(b, e, cell); m; m &= m - 1) {
-      const int k = __builtin_ctz(m);
+      const int k = lowestBit(m);
       const Cube child = cell.child(k);
       const bool hit = gather(b, e, child, k) && visit(child, kBlackCell, top, out_->size());
       out_->resize(top);
@@ -437,11 +438,11 @@ class Query {
     }
     const Node& n = nodes_[it.node];
     for (std::uint8_t m = n.black; m; m &= static_cast<std::uint8_t>(m - 1)) {
-      const CollisionItem c = leafItem(it.node, __builtin_ctz(m));
+      const CollisionItem c = leafItem(it.node, lowestBit(m));
       if (reaches(c, cell)) out_->push_back(c);
     }
     for (std::uint8_t m = n.gray; m; m &= static_cast<std::uint8_t>(m - 1)) {
-      const CollisionItem c = nodeItem(n.childIndex(__builtin_ctz(m)));
+      const CollisionItem c = nodeItem(n.childIndex(lowestBit(m)));
       if (reaches(c, cell)) pushRefined(c, cell);
     }
   }
@@ -463,7 +464,7 @@ class Query {
       const double hs = detail::movedHalf(f_, n.level - 1);
       const Cube parent{n.level, n.origin};
       for (std::uint8_t m = n.black; m; m &= static_cast<std::uint8_t>(m - 1)) {
-        const int k = __builtin_ctz(m);
+        const int k = lowestBit(m);
         double u[3], g[3];
         detail::cubeCentre(parent.child(k), u);
         detail::movePoint(f_, u, g);
@@ -473,7 +474,7 @@ class Query {
       }
     }
     for (std::uint8_t m = n.gray; m; m &= static_cast<std::uint8_t>(m - 1)) {
-      const CollisionItem c = nodeItem(n.childIndex(__builtin_ctz(m)));
+      const CollisionItem c = nodeItem(n.childIndex(lowestBit(m)));
       if (reaches(c, cell) && probeBelow(c, cell)) return true;
     }
     return false;

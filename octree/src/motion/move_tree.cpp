@@ -2,6 +2,7 @@
 #include "octomotion/motion/move_tree.h"
 
 #include "internal/kernel.h"
+#include "octomotion/octree/bits.h"
 #include "octomotion/octree/octree_builder.h"
 
 namespace octomotion {
@@ -134,7 +135,7 @@ class Inserter {
     if (b_.node(parent).gray & bit) {
       const std::uint32_t c = b_.node(parent).child[static_cast<std::size_t>(k)];
       for (std::uint8_t g = b_.node(c).gray; g; g &= static_cast<std::uint8_t>(g - 1)) {
-        makeBlack(c, __builtin_ctz(g));
+        makeBlack(c, lowestBit(g));
       }
       b_.node(c).black = 0xff;
       b_.condense(parent, k);
