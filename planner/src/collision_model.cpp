@@ -16,6 +16,7 @@
 #include "octomotion/motion/collides.h"
 #include "octomotion/motion/move_tree.h"
 #include "octomotion/motion/pose.h"
+#include "octomotion/octree/distance.h"
 #include "octomotion/octree/inner_boxes.h"
 #include "octomotion/octree/mesh.h"
 #include "octomotion/octree/set_ops.h"
@@ -57,44 +58,6 @@ double squaredDistanceToBox(const Eigen::Vector3d& p, const Eigen::AlignedBox3d&
 // exactly axis-aligned in the world.
 bool isAxisPermutation(const Eigen::Matrix3d& R) {
   return (R.array() == 0 || R.array().abs() == 1).all();
-}
-
-double distanceToBox(const Eigen::Vector3d& p, const Eigen::AlignedBox3d& box) {
-  return std::sqrt(squaredDistanceToBox(p, box));
-}
-
-// Distance from p to the nearest black voxel of `tree`, or +inf when there is none closer than
-// `best`: branch and bound over the tree, nearest children first.
-double distanceToBlack(const Octree& tree, const Eigen::Vector3d& p_W, double best) {
-  if (tree.empty()) return best;
-  const WorldGrid& g = tree.grid();
-  auto cubeBox = [&](const Cube& c) { return Eigen::AlignedBox3d(g.cubeMin(c), g.cubeMax(c)); };
-  if (tree.rootColor() == Color::kBlack) {
-    return std::min(best, distanceToBox(p_W, cubeBox(g.universe())));
-  }
-  struct Item {
-    std::uint32_t index;
-    Cube cube;
-  };
-  std::vector<Item> stack{{0, g.universe()}};
-  while (!stack.empty()) {
-    const Item item = stack.back();
-    stack.pop_back();
-    if (distanceToBox(p_W, cubeBox(item.cube)) >= best) continue;
-    const OctreeNode& n = tree.nodes()[item.index];
-    for (unsigned m = n.occupied(); m; m &= m - 1) {
-      const int k = __builtin_ctz(m);
-      const Cube child = item.cube.child(k);
-      const double d = distanceToBox(p_W, cubeBox(child));
-      if (d >= best) continue;
-      if (n.black & (1u << k)) {
-        best = d;
-      } else {
-        stack.push_back({n.childIndex(k), child});
-      }
-    }
-  }
-  return best;
 }
 
 // Surface voxels of a box at a resolution: what a tree of a solid that fills it has to store.

@@ -17,6 +17,7 @@
 #include "octomotion/error.h"
 #include "octomotion/input_limits.h"
 #include "octomotion/motion/move_tree.h"
+#include "octomotion/octree/bits.h"
 #include "octomotion/octree/mesh.h"
 #include "octomotion/planner/collision_meshes.h"
 
@@ -143,8 +144,7 @@ MeshBuffer treeBoxes(const Octree& tree, std::size_t cap, GltfTreeReport& report
     stack.pop_back();
     const OctreeNode& n = nodes[it.node];
     gray[static_cast<std::size_t>(it.level)] += 1;
-    black[static_cast<std::size_t>(it.level - 1)] +=
-        static_cast<std::size_t>(__builtin_popcount(n.black));
+    black[static_cast<std::size_t>(it.level - 1)] += static_cast<std::size_t>(popcount8(n.black));
     for (int k = 0; k < 8; ++k) {
       if (n.gray & (1u << k)) stack.push_back({n.childIndex(k), it.level - 1});
     }

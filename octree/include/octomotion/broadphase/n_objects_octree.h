@@ -29,6 +29,7 @@
 
 #include "octomotion/broadphase/aabb.h"
 #include "octomotion/broadphase/direction.h"
+#include "octomotion/octree/bits.h"
 #include "octomotion/octree/world_grid.h"
 
 namespace octomotion::broadphase {
@@ -244,7 +245,7 @@ void NObjectsOctree::forEachCandidatePair(F&& f) {
         std::uint64_t hits = detail::overlapBits(lo_x + j0, lo_y + j0, lo_z + j0, hi_x + j0,
                                                  hi_y + j0, hi_z + j0, n, lx, ly, lz, hx, hy, hz);
         while (hits) {
-          const std::size_t j = j0 + static_cast<std::size_t>(__builtin_ctzll(hits));
+          const std::size_t j = j0 + static_cast<std::size_t>(lowestBit64(hits));
           hits &= hits - 1;
           // Report from the one leaf owning the intersection's minimum corner.
           const double r[3] = {lx > lo_x[j] ? lx : lo_x[j], ly > lo_y[j] ? ly : lo_y[j],

@@ -20,6 +20,7 @@
 
 #include "octomotion/motion/black_cell_grid.h"
 #include "octomotion/motion/clearance_grid.h"
+#include "octomotion/octree/bits.h"
 #include "octomotion/octree/octree.h"
 #include "octomotion/octree/rounding.h"
 
@@ -38,12 +39,6 @@ struct CollisionItem {
   std::int8_t level;  // level of the leaf cube (leaf items)
   std::uint8_t mask;  // children of the current cell it may reach (set while visiting it)
 };
-// popcount of a byte without relying on the popcnt instruction (not in baseline x86-64).
-inline int popcount8(unsigned x) {
-  x = x - ((x >> 1) & 0x55u);
-  x = (x & 0x33u) + ((x >> 2) & 0x33u);
-  return static_cast<int>((x + (x >> 4)) & 0x0fu);
-}
 }  // namespace detail
 
 // A source tree prepared once for many collision queries (immutable, shareable across
@@ -86,7 +81,7 @@ class MovableSource {
     std::int8_t level;  // level of the node's cube
     Voxel origin;       // min corner of the node's cube
     std::uint32_t childIndex(int k) const {
-      return first_child + static_cast<std::uint32_t>(detail::popcount8(gray & ((1u << k) - 1u)));
+      return first_child + static_cast<std::uint32_t>(childRank(gray, k));
     }
   };
   const std::vector<Node>& nodes() const { return nodes_; }

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "octomotion/octree/bits.h"
 #include "octomotion/octree/world_grid.h"
 
 namespace octomotion {
@@ -15,14 +16,15 @@ namespace octomotion {
 enum class Color : std::uint8_t { kWhite, kBlack, kGray };
 
 // One internal (gray) node. Child `k` is black if bit k of `black` is set, gray if bit k of
-// `gray` is set, white otherwise. Gray child k is nodes[first_child + popcount(gray & ((1<<k)-1))].
+// `gray` is set, white otherwise. Gray child k is nodes[first_child + childRank(gray, k)], where
+// childRank (bits.h) = popcount(gray & ((1<<k)-1)).
 struct OctreeNode {
   std::uint32_t first_child = 0;
   std::uint8_t black = 0;
   std::uint8_t gray = 0;
   std::uint8_t occupied() const { return static_cast<std::uint8_t>(black | gray); }
   std::uint32_t childIndex(int k) const {
-    return first_child + static_cast<std::uint32_t>(__builtin_popcount(gray & ((1u << k) - 1u)));
+    return first_child + static_cast<std::uint32_t>(childRank(gray, k));
   }
   friend bool operator==(const OctreeNode& a, const OctreeNode& b) {
     return a.first_child == b.first_child && a.black == b.black && a.gray == b.gray;

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "octomotion/error.h"
+#include "octomotion/octree/bits.h"
 
 namespace octomotion::broadphase {
 
@@ -202,7 +203,7 @@ void NObjectsOctree::insertFrom(std::uint32_t n, std::uint32_t id) {
   int mask = childMask(n, objects_[id].box);
   const std::uint32_t first = nodes_[n].first_child;
   while (mask) {
-    const int k = __builtin_ctz(static_cast<unsigned>(mask));
+    const int k = lowestBit(static_cast<unsigned>(mask));
     mask &= mask - 1;
     insertFrom(first + static_cast<std::uint32_t>(k), id);
   }
@@ -224,7 +225,7 @@ void NObjectsOctree::enter(std::uint32_t n, std::uint32_t id) {
   int mask = childMask(n, b);
   const std::uint32_t first = node.first_child;
   while (mask) {
-    const int k = __builtin_ctz(static_cast<unsigned>(mask));
+    const int k = lowestBit(static_cast<unsigned>(mask));
     mask &= mask - 1;
     enter(first + static_cast<std::uint32_t>(k), id);
   }
@@ -311,7 +312,7 @@ void NObjectsOctree::move(std::uint32_t id, const Aabb& box) {
     }
     std::uint32_t directions = kReach.directions[reach & motion];
     while (directions) {
-      const int d = __builtin_ctz(directions);
+      const int d = lowestBit(directions);
       directions &= directions - 1;
       ++counters_.neighbour_queries;
       const std::uint32_t q = gtEqNeighbour(leaf, static_cast<Direction>(d));
@@ -368,7 +369,7 @@ void NObjectsOctree::split(std::uint32_t leaf) {
     eraseValue(objects_[id].leaves, leaf);
     int mask = childMask(leaf, objects_[id].box);
     while (mask) {
-      const int k = __builtin_ctz(static_cast<unsigned>(mask));
+      const int k = lowestBit(static_cast<unsigned>(mask));
       mask &= mask - 1;
       addToLeaf(first + static_cast<std::uint32_t>(k), id);  // queues overfull children
     }

@@ -3,6 +3,7 @@
 #include <string>
 
 #include "octomotion/error.h"
+#include "octomotion/octree/bits.h"
 
 namespace octomotion {
 
@@ -27,7 +28,7 @@ OctreeBuilder::OctreeBuilder(const Octree& tree) : OctreeBuilder(tree.grid()) {
     const OctreeNode& src = tree.nodes()[item.from];
     nodes_[item.to].black = src.black;
     for (std::uint8_t g = src.gray; g; g &= static_cast<std::uint8_t>(g - 1)) {
-      const int k = __builtin_ctz(g);
+      const int k = lowestBit(g);
       const std::uint32_t child = split(item.to, k);
       stack.push_back({src.childIndex(k), child});
     }
@@ -51,7 +52,7 @@ std::uint32_t OctreeBuilder::allocate() {
 void OctreeBuilder::release(std::uint32_t i) {
   Node& n = nodes_[i];
   for (std::uint8_t g = n.gray; g; g &= static_cast<std::uint8_t>(g - 1)) {
-    release(n.child[static_cast<std::size_t>(__builtin_ctz(g))]);
+    release(n.child[static_cast<std::size_t>(lowestBit(g))]);
   }
   n = Node{};
   free_.push_back(i);
@@ -97,7 +98,7 @@ void OctreeBuilder::paint(const Cube& cube, bool black) {
   if (cube.level == grid_.depth()) {
     Node& root = nodes_[kRoot];
     for (std::uint8_t g = root.gray; g; g &= static_cast<std::uint8_t>(g - 1)) {
-      release(root.child[static_cast<std::size_t>(__builtin_ctz(g))]);
+      release(root.child[static_cast<std::size_t>(lowestBit(g))]);
     }
     nodes_[kRoot] = Node{};
     nodes_[kRoot].black = black ? 0xff : 0;
@@ -144,7 +145,7 @@ Masks compactMasks(const std::vector<OctreeBuilder::Node>& nodes, std::uint32_t 
   const OctreeBuilder::Node& n = nodes[i];
   Masks m{n.black, 0};
   for (std::uint8_t g = n.gray; g; g &= static_cast<std::uint8_t>(g - 1)) {
-    const int k = __builtin_ctz(g);
+    const int k = lowestBit(g);
     const Masks c = compactMasks(nodes, n.child[static_cast<std::size_t>(k)], out);
     const std::uint8_t bit = static_cast<std::uint8_t>(1u << k);
     if (c.black == 0xff) {
@@ -164,11 +165,10 @@ void layout(const std::vector<OctreeBuilder::Node>& nodes, const std::vector<Mas
   const Masks m = masks[i];
   const std::uint32_t first = static_cast<std::uint32_t>(out.size());
   out[pos] = OctreeNode{m.gray ? first : 0u, m.black, m.gray};
-  out.resize(out.size() + static_cast<std::size_t>(__builtin_popcount(m.gray)));
+  out.resize(out.size() + static_cast<std::size_t>(popcount8(m.gray)));
   std::uint32_t j = 0;
   for (std::uint8_t g = m.gray; g; g &= static_cast<std::uint8_t>(g - 1), ++j) {
-    layout(nodes, masks, nodes[i].child[static_cast<std::size_t>(__builtin_ctz(g))], first + j,
-           out);
+    layout(nodes, masks, nodes[i].child[static_cast<std::size_t>(lowestBit(g))], first + j, out);
   }
 }
 

@@ -9,7 +9,7 @@
 #include <string>
 #include <type_traits>
 
-#include "voxelize_internal.h"
+#include "internal/voxelize.h"
 
 namespace octomotion {
 namespace detail {

@@ -1,6 +1,7 @@
 #include "octomotion/octree/set_ops.h"
 
 #include "octomotion/error.h"
+#include "octomotion/octree/bits.h"
 #include "octomotion/octree/octree_builder.h"
 
 namespace octomotion {
@@ -14,7 +15,7 @@ void copySubtree(const Octree& t, std::uint32_t from, OctreeBuilder& out, std::u
   const OctreeNode& n = t.nodes()[from];
   out.node(to).black = n.black;
   for (unsigned g = n.gray; g; g &= g - 1) {
-    const int k = __builtin_ctz(g);
+    const int k = lowestBit(g);
     copySubtree(t, n.childIndex(k), out, out.split(to, k));
   }
 }
@@ -30,15 +31,15 @@ void combine(Op op, const Octree& a, std::uint32_t ia, const Octree& b, std::uin
   const unsigned a_only = op == Op::kUnite ? (na.gray & ~nb.occupied()) : (na.gray & nb.black);
   const unsigned b_only = op == Op::kUnite ? (nb.gray & ~na.occupied()) : (nb.gray & na.black);
   for (unsigned m = a_only; m; m &= m - 1) {
-    const int k = __builtin_ctz(m);
+    const int k = lowestBit(m);
     copySubtree(a, na.childIndex(k), out, out.split(to, k));
   }
   for (unsigned m = b_only; m; m &= m - 1) {
-    const int k = __builtin_ctz(m);
+    const int k = lowestBit(m);
     copySubtree(b, nb.childIndex(k), out, out.split(to, k));
   }
   for (unsigned m = na.gray & nb.gray; m; m &= m - 1) {
-    const int k = __builtin_ctz(m);
+    const int k = lowestBit(m);
     combine(op, a, na.childIndex(k), b, nb.childIndex(k), out, out.split(to, k));
   }
 }

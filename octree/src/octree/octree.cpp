@@ -4,6 +4,7 @@
 #include <string>
 
 #include "octomotion/error.h"
+#include "octomotion/octree/bits.h"
 #include "octomotion/octree/octree_builder.h"
 
 namespace octomotion {
@@ -53,7 +54,7 @@ bool validate(const std::vector<OctreeNode>& nodes, int depth, std::string* why)
     if (n.black == 0xff) return fail(item.index, "not compact: all eight children black");
     if (n.occupied() == 0) return fail(item.index, "not compact: all eight children white");
     if (n.gray && item.level <= 1) return fail(item.index, "gray child below voxel level");
-    const std::uint64_t count = static_cast<std::uint64_t>(__builtin_popcount(n.gray));
+    const std::uint64_t count = static_cast<std::uint64_t>(popcount8(n.gray));
     if (n.gray && static_cast<std::uint64_t>(n.first_child) + count > nodes.size()) {
       return fail(item.index, "child index out of range");
     }
@@ -102,7 +103,7 @@ bool Octree::checkInvariants(std::string* why) const {
 std::size_t Octree::blackLeafCount() const {
   if (root_ != Color::kGray) return root_ == Color::kBlack ? 1 : 0;
   std::size_t count = 0;
-  for (const OctreeNode& n : nodes_) count += static_cast<std::size_t>(__builtin_popcount(n.black));
+  for (const OctreeNode& n : nodes_) count += static_cast<std::size_t>(popcount8(n.black));
   return count;
 }
 
@@ -178,7 +179,7 @@ bool sameSubtree(const std::vector<OctreeNode>& a, std::uint32_t ia,
   const OctreeNode& nb = b[ib];
   if (na.black != nb.black || na.gray != nb.gray) return false;
   for (std::uint8_t g = na.gray; g; g &= static_cast<std::uint8_t>(g - 1)) {
-    const int k = __builtin_ctz(g);
+    const int k = lowestBit(g);
     if (!sameSubtree(a, na.childIndex(k), b, nb.childIndex(k))) return false;
   }
   return true;

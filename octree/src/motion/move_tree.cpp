@@ -1,14 +1,15 @@
 // moveTree: fdleaf / intersect / condense of Weng & Ahuja 1987 §4.
 #include "octomotion/motion/move_tree.h"
 
-#include "motion_kernel.h"
+#include "internal/kernel.h"
+#include "octomotion/octree/bits.h"
 #include "octomotion/octree/octree_builder.h"
 
 namespace octomotion {
 
 namespace {
 
-using motion_detail::MotionFrame;
+using detail::MotionFrame;
 
 enum class Relation { kOutside, kInside, kPartial };
 
@@ -16,15 +17,15 @@ enum class Relation { kOutside, kInside, kPartial };
 class Inserter {
  public:
   Inserter(const MotionFrame& f, OctreeBuilder& builder, Rounding rounding)
-      : f_(f), b_(builder), rounding_(rounding), margin_(motion_detail::rejectMargin(rounding)) {}
+      : f_(f), b_(builder), rounding_(rounding), margin_(detail::rejectMargin(rounding)) {}
 
   bool clipped = false;
 
   void insertLeaf(const Cube& leaf) {
     double u[3];
-    motion_detail::cubeCentre(leaf, u);
-    motion_detail::movePoint(f_, u, g_);
-    hs_ = motion_detail::movedHalf(f_, leaf.level);
+    detail::cubeCentre(leaf, u);
+    detail::movePoint(f_, u, g_);
+    hs_ = detail::movedHalf(f_, leaf.level);
     // Out-of-space check of fdleaf: the paper stops with an error; we clip.
     bool disjoint = false;
     for (int i = 0; i < 3; ++i) {
@@ -58,9 +59,9 @@ class Inserter {
   // spanned by the target cube's voxel centres, in the source axes.
   Relation relation(const Cube& cell) const {
     double e[3];
-    motion_detail::cubeCentre(cell, e);
+    detail::cubeCentre(cell, e);
     const double d[3] = {e[0] - g_[0], e[1] - g_[1], e[2] - g_[2]};
-    const double hc = motion_detail::cellReach(rounding_, cell.level);
+    const double hc = detail::cellReach(rounding_, cell.level);
     for (int i = 0; i < 3; ++i) {
       if (std::fabs(d[i]) > hc + hs_ * f_.rowsum[i] + margin_) return Relation::kOutside;
     }
@@ -74,7 +75,7 @@ class Inserter {
     // 0.28 (< (0.5 - 2 tol)/sqrt(3)) of the cube puts the voxel at distance < 0.5 - 2 tol, so the
     // voxel overlaps the cube by more than tol on every axis.
     const double slack = rounding_ == Rounding::kCenter ? 0.5 * kMotionTieTolerance : 0.28;
-    const double hq = motion_detail::halfSide(cell.level) - 0.5;
+    const double hq = detail::halfSide(cell.level) - 0.5;
     for (int j = 0; j < 3; ++j) {
       if (!(std::fabs(q[j]) + hq * f_.colsum[j] <= hs_ + slack)) return Relation::kPartial;
     }
@@ -85,7 +86,7 @@ class Inserter {
   std::uint8_t voxelMask(const Cube& cell) const {
     std::uint8_t mask = 0;
     for (int k = 0; k < 8; ++k) {
-      if (motion_detail::voxelAccepts(f_, rounding_, cell.child(k).origin, g_, hs_)) {
+      if (detail::voxelAccepts(f_, rounding_, cell.child(k).origin, g_, hs_)) {
         mask = static_cast<std::uint8_t>(mask | (1u << k));
       }
     }
@@ -96,7 +97,7 @@ class Inserter {
     const std::uint8_t bit = static_cast<std::uint8_t>(1u << k);
     if (b_.node(parent).black & bit) return;  // already black: nothing to add
     if (cell.level == 0) {
-      if (motion_detail::voxelAccepts(f_, rounding_, cell.origin, g_, hs_)) {
+      if (detail::voxelAccepts(f_, rounding_, cell.origin, g_, hs_)) {
         b_.node(parent).black = static_cast<std::uint8_t>(b_.node(parent).black | bit);
       }
       return;
@@ -134,7 +135,7 @@ class Inserter {
     if (b_.node(parent).gray & bit) {
       const std::uint32_t c = b_.node(parent).child[static_cast<std::size_t>(k)];
       for (std::uint8_t g = b_.node(c).gray; g; g &= static_cast<std::uint8_t>(g - 1)) {
-        makeBlack(c, __builtin_ctz(g));
+        makeBlack(c, lowestBit(g));
       }
       b_.node(c).black = 0xff;
       b_.condense(parent, k);
@@ -155,8 +156,8 @@ class Inserter {
 
 Octree moveTree(const Octree& source, const Eigen::Isometry3d& X_WS, const WorldGrid& target_grid,
                 Rounding rounding, MoveStats* stats) {
-  MotionFrame f = motion_detail::makeMotionFrame(X_WS, source.grid(), target_grid, "moveTree");
-  if (rounding == Rounding::kConservative) motion_detail::addEdgeAxes(f);
+  MotionFrame f = detail::makeMotionFrame(X_WS, source.grid(), target_grid, "moveTree");
+  if (rounding == Rounding::kConservative) detail::addEdgeAxes(f);
   OctreeBuilder builder(target_grid);
   Inserter inserter(f, builder, rounding);
   // fdleaf: every black leaf of the source, in depth-first label order.

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "octomotion/error.h"
+#include "octomotion/octree/bits.h"
 #include "octomotion/octree/octree_builder.h"
 
 namespace octomotion {
@@ -125,7 +126,7 @@ class AxisMover {
         out_(source.grid()),
         axis_(axis),
         d_(d),
-        level_h_(__builtin_ctzll(static_cast<std::uint64_t>(d))) {}
+        level_h_(lowestBit64(static_cast<std::uint64_t>(d))) {}
 
   Octree run(bool* clipped) {
     LabelPath path;
@@ -201,7 +202,7 @@ class AxisMover {
     n.black = static_cast<std::uint8_t>(n.black | (up ? black << a : black >> a));
     for (std::uint8_t g = static_cast<std::uint8_t>(node.gray & part); g;
          g &= static_cast<std::uint8_t>(g - 1)) {
-      const int k = __builtin_ctz(g);
+      const int k = lowestBit(g);
       const std::uint32_t copy = out_.split(to, k ^ a);  // may move out_'s nodes: no refs kept
       copySubtree(node.childIndex(k), copy);
     }
@@ -249,7 +250,7 @@ class AxisMover {
   }
   static LabelPath pathOfKey(std::uint64_t key) {
     LabelPath path;
-    const int length = (63 - __builtin_clzll(key)) / 3;
+    const int length = highestBit64(key) / 3;
     for (int i = length - 1; i >= 0; --i) {
       path.push(static_cast<int>((key >> (3 * i)) & 7u));
     }
@@ -326,7 +327,7 @@ class AxisMover {
     const OctreeNode n = source_.nodes()[from];
     out_.node(to).black = n.black;
     for (std::uint8_t g = n.gray; g; g &= static_cast<std::uint8_t>(g - 1)) {
-      const int k = __builtin_ctz(g);
+      const int k = lowestBit(g);
       copySubtree(n.childIndex(k), out_.split(to, k));
     }
   }
@@ -421,7 +422,7 @@ class AxisWindow {
       made.black = static_cast<std::uint8_t>(((l.black & ~low) >> a_) | ((h.black & low) << a_));
       made.gray = static_cast<std::uint8_t>(((l.gray & ~low) >> a_) | ((h.gray & low) << a_));
       for (std::uint8_t g = made.gray; g; g &= static_cast<std::uint8_t>(g - 1)) {
-        const int k = __builtin_ctz(g);
+        const int k = lowestBit(g);
         const Ref c = (k & a_) ? child(hi, k ^ a_) : child(lo, k ^ a_);
         made.child[static_cast<std::size_t>(k)] = c.index | kSource;
       }
@@ -460,7 +461,7 @@ class AxisWindow {
       black = n.black;
       gray = n.gray;
       for (std::uint8_t g = gray; g; g &= static_cast<std::uint8_t>(g - 1)) {
-        const int k = __builtin_ctz(g);
+        const int k = lowestBit(g);
         children[static_cast<std::size_t>(k)] = n.childIndex(k) | kSource;
       }
     } else {
@@ -471,10 +472,10 @@ class AxisWindow {
     }
     const std::uint32_t first = static_cast<std::uint32_t>(out.size());
     out[pos] = OctreeNode{gray ? first : 0u, black, gray};
-    out.resize(out.size() + static_cast<std::size_t>(__builtin_popcount(gray)));
+    out.resize(out.size() + static_cast<std::size_t>(popcount8(gray)));
     std::uint32_t j = 0;
     for (std::uint8_t g = gray; g; g &= static_cast<std::uint8_t>(g - 1), ++j) {
-      emit(children[static_cast<std::size_t>(__builtin_ctz(g))], first + j, out);
+      emit(children[static_cast<std::size_t>(lowestBit(g))], first + j, out);
     }
   }
 

@@ -4,15 +4,16 @@
 #include <algorithm>
 #include <cmath>
 
-#include "motion_kernel.h"
+#include "internal/kernel.h"
 #include "octomotion/error.h"
+#include "octomotion/octree/bits.h"
 
 namespace octomotion {
 
 namespace {
 
 using detail::CollisionItem;
-using motion_detail::MotionFrame;
+using detail::MotionFrame;
 using Node = MovableSource::Node;
 
 struct IntBox {
@@ -82,7 +83,7 @@ class Query {
         env_root_(env.rootColor()),
         depth_(env.grid().depth()),
         rounding_(rounding),
-        margin_(motion_detail::rejectMargin(rounding)),
+        margin_(detail::rejectMargin(rounding)),
         scratch_(scratch),
         witness_(witness),
         src_(src),
@@ -120,11 +121,10 @@ class Query {
     // landing in a black cell is a shared voxel (needs the smallest leaf's moved half to pass
     // inside()). Centre: that voxel is black only if its centre lies in a moved black leaf,
     // which centreProbe looks up in the source tree and confirms with the colour rule.
-    if (solid_ &&
-        (rounding_ == Rounding::kCenter || motion_detail::movedHalf(f_, 0) >= kInsideMinHalf)) {
+    if (solid_ && (rounding_ == Rounding::kCenter || detail::movedHalf(f_, 0) >= kInsideMinHalf)) {
       for (const std::array<double, 3>& u : src_.gridProbes()) {
         double g[3];
-        motion_detail::movePoint(f_, u.data(), g);
+        detail::movePoint(f_, u.data(), g);
         if (!solid_->black(g)) continue;
         const Voxel v{static_cast<std::uint32_t>(g[0]), static_cast<std::uint32_t>(g[1]),
                       static_cast<std::uint32_t>(g[2])};
@@ -145,15 +145,15 @@ class Query {
     // Cheap first guess: the voxel at the moved centre of each of the largest leaves.
     for (const Cube& leaf : src_.coreLeaves()) {
       double u[3], g[3];
-      motion_detail::cubeCentre(leaf, u);
-      motion_detail::movePoint(f_, u, g);
+      detail::cubeCentre(leaf, u);
+      detail::movePoint(f_, u, g);
       if (!(g[0] >= 0 && g[1] >= 0 && g[2] >= 0 && g[0] < side && g[1] < side && g[2] < side)) {
         continue;
       }
       const Voxel v{static_cast<std::uint32_t>(g[0]), static_cast<std::uint32_t>(g[1]),
                     static_cast<std::uint32_t>(g[2])};
       if (locate(Cube{0, v}) == kBlackCell &&
-          probe(g, motion_detail::movedHalf(f_, leaf.level), Cube{0, v})) {
+          probe(g, detail::movedHalf(f_, leaf.level), Cube{0, v})) {
         return true;
       }
     }
@@ -209,10 +209,10 @@ class Query {
       ++splits;
       const Node& n = nodes_[it.node];
       for (std::uint8_t m = n.black; m; m &= static_cast<std::uint8_t>(m - 1)) {
-        todo.push_back(leafItem(it.node, __builtin_ctz(m)));
+        todo.push_back(leafItem(it.node, lowestBit(m)));
       }
       for (std::uint8_t m = n.gray; m; m &= static_cast<std::uint8_t>(m - 1)) {
-        todo.push_back(nodeItem(n.childIndex(__builtin_ctz(m))));
+        todo.push_back(nodeItem(n.childIndex(lowestBit(m))));
       }
     }
   }
@@ -234,7 +234,7 @@ class Query {
   }
 
   static std::uint32_t envChild(const OctreeNode& n, int k) {
-    return n.first_child + static_cast<std::uint32_t>(detail::popcount8(n.gray & ((1u << k) - 1u)));
+    return n.first_child + static_cast<std::uint32_t>(childRank(n.gray, k));
   }
 
   // Depth-first parallel descent. The pieces [b, e) of the stack reach `cell`; the callee's
@@ -268,7 +268,7 @@ class Query {
     } pending[8];
     int count = 0;
     for (unsigned m = reach & n.occupied(); m; m &= m - 1) {
-      const int k = __builtin_ctz(m);
+      const int k = lowestBit(m);
       const std::size_t base = out_->size();
       const Cube child = cell.child(k);
       if (!gather(b, e, child, k)) continue;
@@ -296,7 +296,7 @@ class Query {
   // inside); the ordering heuristic of visit().
   double depthOutside(const Cube& cell, std::size_t b, std::size_t e) const {
     double c[3];
-    motion_detail::cubeCentre(cell, c);
+    detail::cubeCentre(cell, c);
     double best = 1e300;
     for (std::size_t i = b; i < e; ++i) {
       const CollisionItem& it = (*out_)[i];
@@ -315,7 +315,7 @@ class Query {
   bool blackChildren(const Cube& cell, std::size_t b, std::size_t e) {
     const std::size_t top = out_->size();
     for (unsigned m = childMasks(b, e, cell); m; m &= m - 1) {
-      const int k = __builtin_ctz(m);
+      const int k = lowestBit(m);
       const Cube child = cell.child(k);
       const bool hit = gather(b, e, child, k) && visit(child, kBlackCell, top, out_->size());
       out_->resize(top);
@@ -327,9 +327,9 @@ class Query {
   // For each piece of [b, e), the children of `cell` it may reach by the target-axis tests
   // (two half-planes per axis instead of eight cubes); returns their union.
   unsigned childMasks(std::size_t b, std::size_t e, const Cube& cell) {
-    const double s = motion_detail::halfSide(cell.level);  // a child's side
-    const double q = motion_detail::halfSide(cell.level - 1);
-    const double hc = motion_detail::cellReach(rounding_, cell.level - 1) + margin_;
+    const double s = detail::halfSide(cell.level);  // a child's side
+    const double q = detail::halfSide(cell.level - 1);
+    const double hc = detail::cellReach(rounding_, cell.level - 1) + margin_;
     const double lo[3] = {static_cast<double>(cell.origin.x) + q,
                           static_cast<double>(cell.origin.y) + q,
                           static_cast<double>(cell.origin.z) + q};
@@ -354,8 +354,8 @@ class Query {
   bool gather(std::size_t b, std::size_t e, const Cube& cell, int k) {
     const std::size_t base = out_->size();
     double c[3];
-    motion_detail::cubeCentre(cell, c);
-    const double hc = motion_detail::cellReach(rounding_, cell.level);
+    detail::cubeCentre(cell, c);
+    const double hc = detail::cellReach(rounding_, cell.level);
     for (std::size_t i = b; i < e; ++i) {
       if (((*out_)[i].mask >> k & 1u) && reachesInSource((*out_)[i], c, hc)) {
         const CollisionItem it = (*out_)[i];  // the push below may reallocate
@@ -378,7 +378,7 @@ class Query {
   CollisionItem nodeItem(std::uint32_t i) const {
     const Node& n = nodes_[i];
     CollisionItem it;
-    motion_detail::movePoint(f_, n.centre, it.g);
+    detail::movePoint(f_, n.centre, it.g);
     for (int a = 0; a < 3; ++a) {
       it.rs[a] = f_.s * n.half[a];
       it.rt[a] = f_.absA[a][0] * n.half[0] + f_.absA[a][1] * n.half[1] + f_.absA[a][2] * n.half[2];
@@ -394,10 +394,10 @@ class Query {
     const Node& n = nodes_[i];
     const Cube cube = Cube{n.level, n.origin}.child(k);
     double u[3];
-    motion_detail::cubeCentre(cube, u);
+    detail::cubeCentre(cube, u);
     CollisionItem it;
-    motion_detail::movePoint(f_, u, it.g);  // the same expression moveTree evaluates
-    const double hs = motion_detail::movedHalf(f_, cube.level);
+    detail::movePoint(f_, u, it.g);  // the same expression moveTree evaluates
+    const double hs = detail::movedHalf(f_, cube.level);
     for (int a = 0; a < 3; ++a) {
       it.rs[a] = hs;
       it.rt[a] = hs * f_.rowsum[a];
@@ -413,8 +413,8 @@ class Query {
   // voxel of `cell` can be turned black by the moved piece.
   bool reaches(const CollisionItem& it, const Cube& cell) const {
     double e[3];
-    motion_detail::cubeCentre(cell, e);
-    return reaches(it, e, motion_detail::cellReach(rounding_, cell.level));
+    detail::cubeCentre(cell, e);
+    return reaches(it, e, detail::cellReach(rounding_, cell.level));
   }
   // The same with the cell's centre e and reach hc (see cellReach) precomputed.
   bool reaches(const CollisionItem& it, const double e[3], double hc) const {
@@ -432,17 +432,17 @@ class Query {
   // Pushes a piece known to reach `cell`; a gray source node larger than the cell is replaced
   // by its children that reach it (the source side of the parallel descent).
   void pushRefined(const CollisionItem& it, const Cube& cell) {
-    if (it.leaf >= 0 || it.split <= motion_detail::halfSide(cell.level)) {
+    if (it.leaf >= 0 || it.split <= detail::halfSide(cell.level)) {
       out_->push_back(it);
       return;
     }
     const Node& n = nodes_[it.node];
     for (std::uint8_t m = n.black; m; m &= static_cast<std::uint8_t>(m - 1)) {
-      const CollisionItem c = leafItem(it.node, __builtin_ctz(m));
+      const CollisionItem c = leafItem(it.node, lowestBit(m));
       if (reaches(c, cell)) out_->push_back(c);
     }
     for (std::uint8_t m = n.gray; m; m &= static_cast<std::uint8_t>(m - 1)) {
-      const CollisionItem c = nodeItem(n.childIndex(__builtin_ctz(m)));
+      const CollisionItem c = nodeItem(n.childIndex(lowestBit(m)));
       if (reaches(c, cell)) pushRefined(c, cell);
     }
   }
@@ -459,22 +459,22 @@ class Query {
     const Node& n = nodes_[it.node];
     if (n.black) {
       double e[3];
-      motion_detail::cubeCentre(cell, e);
-      const double hc = motion_detail::cellReach(rounding_, cell.level);
-      const double hs = motion_detail::movedHalf(f_, n.level - 1);
+      detail::cubeCentre(cell, e);
+      const double hc = detail::cellReach(rounding_, cell.level);
+      const double hs = detail::movedHalf(f_, n.level - 1);
       const Cube parent{n.level, n.origin};
       for (std::uint8_t m = n.black; m; m &= static_cast<std::uint8_t>(m - 1)) {
-        const int k = __builtin_ctz(m);
+        const int k = lowestBit(m);
         double u[3], g[3];
-        motion_detail::cubeCentre(parent.child(k), u);
-        motion_detail::movePoint(f_, u, g);
+        detail::cubeCentre(parent.child(k), u);
+        detail::movePoint(f_, u, g);
         if (!leafReaches(g, hs, e, hc)) continue;
         if (probe(g, hs, cell)) return true;
         if (cell.level > 0) out_->push_back(leafItem(it.node, k));
       }
     }
     for (std::uint8_t m = n.gray; m; m &= static_cast<std::uint8_t>(m - 1)) {
-      const CollisionItem c = nodeItem(n.childIndex(__builtin_ctz(m)));
+      const CollisionItem c = nodeItem(n.childIndex(lowestBit(m)));
       if (reaches(c, cell) && probeBelow(c, cell)) return true;
     }
     return false;
@@ -515,7 +515,7 @@ class Query {
                          static_cast<double>(v.z) + 0.5 - f_.b[2]};
     std::uint32_t u[3];
     const Node& root = nodes_[0];
-    const double side = 2.0 * motion_detail::halfSide(root.level);
+    const double side = 2.0 * detail::halfSide(root.level);
     for (int j = 0; j < 3; ++j) {
       const double q = (f_.R[0][j] * d[0] + f_.R[1][j] * d[1] + f_.R[2][j] * d[2]) / f_.s;
       if (!(q >= 0.0 && q < side)) return false;
@@ -530,10 +530,9 @@ class Query {
       if ((n.black >> k) & 1u) {
         const Cube leaf = Cube{n.level, n.origin}.child(k);
         double c[3], g[3];
-        motion_detail::cubeCentre(leaf, c);
-        motion_detail::movePoint(f_, c, g);  // the same expression moveTree evaluates
-        return motion_detail::voxelAccepts(f_, rounding_, v, g,
-                                           motion_detail::movedHalf(f_, leaf.level));
+        detail::cubeCentre(leaf, c);
+        detail::movePoint(f_, c, g);  // the same expression moveTree evaluates
+        return detail::voxelAccepts(f_, rounding_, v, g, detail::movedHalf(f_, leaf.level));
       }
       if (!((n.gray >> k) & 1u)) return false;
       idx = n.childIndex(k);
@@ -554,11 +553,11 @@ class Query {
     }
     const Voxel voxel{v[0], v[1], v[2]};
     if (!inside(voxel, g, hs)) {
-      if (f_.n_cross < 0 && rounding_ == Rounding::kConservative) motion_detail::addEdgeAxes(f_);
+      if (f_.n_cross < 0 && rounding_ == Rounding::kConservative) detail::addEdgeAxes(f_);
       // Centre rounding: a leaf smaller than a voxel (finer link trees) seldom holds a voxel
       // centre itself, but inside the object its neighbours do; one lookup settles the voxel
       // instead of descending every leaf down to single voxels.
-      if (!motion_detail::voxelAccepts(f_, rounding_, voxel, g, hs) &&
+      if (!detail::voxelAccepts(f_, rounding_, voxel, g, hs) &&
           !(rounding_ == Rounding::kCenter && centreProbe(voxel))) {
         return false;
       }
@@ -593,7 +592,7 @@ MovableSource::MovableSource(const Octree& source, double expand_factor)
   } else if (root_ == Color::kBlack) {
     // A virtual parent one level above the universe whose child 0 is the black universe, so
     // the query handles every source the same way.
-    const double h = motion_detail::halfSide(grid_.depth());
+    const double h = detail::halfSide(grid_.depth());
     Node n{};
     n.centre[0] = n.centre[1] = n.centre[2] = h;
     n.half[0] = n.half[1] = n.half[2] = h;
@@ -613,7 +612,7 @@ MovableSource::MovableSource(const Octree& source, double expand_factor)
   }
   auto centre = [](const Cube& c) {
     double u[3];
-    motion_detail::cubeCentre(c, u);
+    detail::cubeCentre(c, u);
     return Eigen::Vector3d(u[0], u[1], u[2]);
   };
   while (core_.size() < kCoreLeaves && core_.size() < candidates.size()) {
@@ -667,8 +666,7 @@ bool collides(const MovableSource& source, const Eigen::Isometry3d& X_WS, const 
       clearance->sideVoxels() != static_cast<double>(environment.grid().sideVoxels())) {
     throw InvalidArgument("collides: the ClearanceGrid is not of this environment");
   }
-  MotionFrame f =
-      motion_detail::makeMotionFrame(X_WS, source.grid(), environment.grid(), "collides");
+  MotionFrame f = detail::makeMotionFrame(X_WS, source.grid(), environment.grid(), "collides");
   if (source.rootColor() == Color::kWhite) return false;
   Query q(f, source, environment, rounding, scratch, witness, solid, clearance);
   return q.run();

@@ -1,6 +1,7 @@
 #include "octomotion/octree/traversal.h"
 
 #include "octomotion/error.h"
+#include "octomotion/octree/bits.h"
 
 namespace octomotion {
 
@@ -20,7 +21,7 @@ bool intersectsFrom(const OctreeNode* a_nodes, std::uint32_t ia, const OctreeNod
   const OctreeNode& b = b_nodes[ib];
   if ((a.black & b.occupied()) | (b.black & a.occupied())) return true;
   for (unsigned both = a.gray & b.gray; both; both &= both - 1) {
-    const int k = __builtin_ctz(both);
+    const int k = lowestBit(both);
     if (intersectsFrom(a_nodes, a.childIndex(k), b_nodes, b.childIndex(k))) return true;
   }
   return false;
@@ -42,7 +43,7 @@ void overlapFrom(const Octree& a, std::uint32_t ia, const Octree& b, std::uint32
   const OctreeNode& na = a.nodes()[ia];
   const OctreeNode& nb = b.nodes()[ib];
   for (unsigned m = na.occupied() & nb.occupied(); m; m &= m - 1) {
-    const int k = __builtin_ctz(m);
+    const int k = lowestBit(m);
     const unsigned bit = 1u << k;
     const Cube child = cube.child(k);
     if ((na.black & bit) && (nb.black & bit)) {

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "octomotion/error.h"
+#include "octomotion/octree/bits.h"
 
 namespace octomotion {
 
@@ -162,10 +163,10 @@ void emitRotated(const std::vector<OctreeNode>& source, std::uint32_t from, std:
   const std::uint8_t gray = R.mapMask(n.gray);
   const std::uint32_t first = static_cast<std::uint32_t>(out.size());
   out[to] = OctreeNode{gray ? first : 0u, R.mapMask(n.black), gray};
-  out.resize(out.size() + static_cast<std::size_t>(__builtin_popcount(gray)));
+  out.resize(out.size() + static_cast<std::size_t>(popcount8(gray)));
   std::uint32_t j = 0;
   for (std::uint8_t g = gray; g; g &= static_cast<std::uint8_t>(g - 1), ++j) {
-    const int k = preimage[static_cast<std::size_t>(__builtin_ctz(g))];
+    const int k = preimage[static_cast<std::size_t>(lowestBit(g))];
     emitRotated(source, n.childIndex(k), first + j, R, preimage, out);
   }
 }

@@ -1,10 +1,10 @@
-#include "motion_kernel.h"
+#include "internal/kernel.h"
 
 #include <string>
 
 #include "octomotion/error.h"
 
-namespace octomotion::motion_detail {
+namespace octomotion::detail {
 
 MotionFrame makeMotionFrame(const Eigen::Isometry3d& X_WS, const WorldGrid& source,
                             const WorldGrid& target, const char* what) {
@@ -62,4 +62,4 @@ void addEdgeAxes(MotionFrame& f) {
   }
 }
 
-}  // namespace octomotion::motion_detail
+}  // namespace octomotion::detail

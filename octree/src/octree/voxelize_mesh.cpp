@@ -9,9 +9,9 @@
 #include <cmath>
 #include <string>
 
-#include "mesh_internal.h"
+#include "internal/mesh.h"
+#include "internal/voxelize.h"
 #include "octomotion/octree/voxelize.h"
-#include "voxelize_internal.h"
 
 namespace octomotion {
 namespace detail {

@@ -11,7 +11,7 @@
 #include <assimp/scene.h>
 #include <assimp/Importer.hpp>
 
-#include "mesh_internal.h"
+#include "internal/mesh.h"
 #include "octomotion/error.h"
 #include "octomotion/input_limits.h"
 

@@ -20,7 +20,7 @@
 #include "octomotion/octree/rounding.h"
 #include "octomotion/octree/world_grid.h"
 
-namespace octomotion::motion_detail {
+namespace octomotion::detail {
 
 // Everything about one pose that the per-cube tests need, in target-grid voxel units:
 // a source grid point u (source voxels) moves to g = A u + b (target voxels), A = s R.
@@ -126,4 +126,4 @@ inline double cellReach(Rounding rounding, int level) {
   return rounding == Rounding::kCenter ? h - 0.5 : h;
 }
 
-}  // namespace octomotion::motion_detail
+}  // namespace octomotion::detail
