@@ -1,44 +1,119 @@
 #!/usr/bin/env bash
-# Writes docs/benchmarks.md from the bench programs, stamped with the commit and the machine.
-# Run from a configured Release build (scripts/run.sh demo builds one):
-#   scripts/write_benchmarks.sh [BUILD_DIR]
+# Writes docs/benchmarks.md, the one page of measured figures, from the bench programs. Each
+# section is stamped with the commit, the date and the machine it was measured on; sections not
+# named on the command line keep what the page had (so a long study need not rerun for a quick
+# one). Run from a configured Release build (scripts/run.sh demo builds one):
+#   scripts/write_benchmarks.sh [--build DIR] [SECTION ...]     (no SECTION: all of them)
+# Sections: differential motion octree builders translate primitive_contact planner_environment
+#           planner_selfcollision planner_clearance pointoctree self_pair_tables check_breakdown
+#           plan_split broadphase tradeoff
 # Environment: OCTOMOTION_DIFFERENTIAL_STATES (default 1000000).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
-build=${1:-$root/build}
-states=${OCTOMOTION_DIFFERENTIAL_STATES:-1000000}
+build=$root/build
+if [[ ${1:-} == --build ]]; then
+  build=$(cd "$2" && pwd)
+  shift 2
+fi
 out=$root/docs/benchmarks.md
+all=(differential motion octree builders translate primitive_contact planner_environment
+  planner_selfcollision planner_clearance pointoctree self_pair_tables check_breakdown plan_split
+  broadphase tradeoff)
+selected=("$@")
+((${#selected[@]})) || selected=("${all[@]}")
 
-cmake --build "$build" --target validation_differential_bench >/dev/null
+gbench="--benchmark_repetitions=5 --benchmark_report_aggregates_only=true"
+states=${OCTOMOTION_DIFFERENTIAL_STATES:-1000000}
+# section -> title | bench target | arguments (relative to the repository root)
+declare -A title target args
+add() { title[$1]=$2; target[$1]=$3; args[$1]=$4; }
+add differential "Randomised differential validation against FCL (docs/validation.md §6)" \
+  validation_differential_bench "--states $states --per-case 4000 --seed 1"
+add motion "Moving trees and the fused query (motion_bench)" motion_bench "$gbench"
+add octree "Octree queries and file I/O (octree_bench)" octree_bench "$gbench"
+add builders "Builders (builders_bench)" builders_bench "$gbench"
+add translate "Translations and quarter turns (translate_bench)" translate_bench "$gbench"
+add primitive_contact "Exact primitives against the voxel query (primitive_contact_bench)" \
+  primitive_contact_bench "$gbench"
+add planner_environment "Many environment objects (planner_environment_bench)" \
+  planner_environment_bench "$gbench"
+add planner_selfcollision "Self-collision broad phase (planner_selfcollision_bench)" \
+  planner_selfcollision_bench "$gbench"
+add planner_clearance "Clearance (planner_clearance_bench)" planner_clearance_bench "$gbench"
+add pointoctree "Point octree against nanoflann (pointoctree_bench)" pointoctree_bench "$gbench"
+add self_pair_tables "Self-pair tables, bookshelf at 5 mm (planner_self_pair_tables_bench)" \
+  planner_self_pair_tables_bench "robots/scenes/bookshelf.yaml 0.005 20000"
+add check_breakdown "Where a check's time goes, cage at 5 mm (planner_check_breakdown_bench)" \
+  planner_check_breakdown_bench "robots/scenes/cage.yaml 0.005"
+add plan_split "Where a plan's time goes, bookshelf at 1 cm (planner_plan_split_bench)" \
+  planner_plan_split_bench "robots/scenes/bookshelf.yaml 0.01"
+add broadphase "N-objects octree broad phase (broadphase_bench)" broadphase_bench ""
+add tradeoff "Speed/accuracy trade study (tradeoff_bench; docs/trade-off.md)" tradeoff_bench \
+  "--out-dir $build/tradeoff-results"
 
 commit=$(git -C "$root" rev-parse --short HEAD)
-dirty=$(git -C "$root" status --porcelain --untracked-files=no | grep -q . && echo " (with uncommitted changes)" || true)
+git -C "$root" diff --quiet HEAD -- octree planner bench tests || commit="$commit+changes"
 cpu=$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ *//' || echo unknown)
+stamp="Measured at commit $commit on $(date -u +%Y-%m-%d), $(nproc) cores of $cpu."
 
-differential=$("$build/bench/validation_differential_bench" --states "$states" --seed 1) || {
-  echo "$differential"
-  echo "write_benchmarks: the differential validation failed; docs/benchmarks.md not written" >&2
-  exit 1
+# The text between a section's markers in the page as it is.
+old_section() {
+  [[ -f $out ]] || return 0
+  awk -v name="$1" '$0 == "<!-- section " name " -->" {on = 1} on {print}
+    $0 == "<!-- end " name " -->" {on = 0}' "$out"
 }
+
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+for s in "${selected[@]}"; do
+  [[ -n ${title[$s]:-} ]] || { echo "unknown section $s (one of: ${all[*]})" >&2; exit 2; }
+  cmake --build "$build" --target "${target[$s]}" >/dev/null
+  echo "write_benchmarks: $s" >&2
+  # shellcheck disable=SC2086
+  if ! result=$(cd "$root" && "$build/bench/${target[$s]}" ${args[$s]} 2>&1); then
+    echo "$result" >&2
+    echo "write_benchmarks: $s failed; docs/benchmarks.md not written" >&2
+    exit 1
+  fi
+  {
+    echo "<!-- section $s -->"
+    echo "## ${title[$s]}"
+    echo
+    echo "$stamp Command: \`build/bench/${target[$s]} ${args[$s]//$build/build}\`"
+    echo
+    if [[ $s == differential ]]; then
+      echo "Per checker path: FCL's contacts; the octree's missed contacts (none allowed with"
+      echo "conservative rounding); the free states it rejects, their FCL distance as a fraction of"
+      echo "the path's margin (none allowed above 1), and those where one solid lies inside another."
+      echo
+      echo "$result" | grep -v '^took \|^differential validation:'
+    else
+      echo '```text'
+      echo "$result" | grep -v '^\*\*\*WARNING\|^$'
+      echo '```'
+    fi
+    echo "<!-- end $s -->"
+  } >"$tmp/$s.md"
+done
 
 {
   echo "# Measured figures"
   echo
-  echo "Generated by \`scripts/write_benchmarks.sh\`; do not edit. Commit $commit$dirty, $(date -u +%Y-%m-%d),"
-  echo "$(nproc) cores of $cpu, $(uname -sm)."
-  echo
-  echo "## Randomised differential validation against FCL"
-  echo
-  echo "What it draws and asserts: docs/validation.md §6. Command:"
-  echo
-  echo '```sh'
-  echo "build/bench/validation_differential_bench --states $states --seed 1"
-  echo '```'
-  echo
-  echo "Per checker path: FCL's contacts, the octree's missed contacts (none allowed with"
-  echo "conservative rounding), the free states it rejects and their FCL distance as a fraction of"
-  echo "the path's margin (none allowed above 1)."
-  echo
-  echo "$differential" | sed -n '2,$p' | grep -v '^took ' || true
-} >"$out"
-echo "wrote $out"
+  echo "Generated by \`scripts/write_benchmarks.sh\` from the bench programs; do not edit. Each"
+  echo "section says the commit and the machine it was measured on; rerun one with"
+  echo "\`scripts/write_benchmarks.sh SECTION\`. Medians are over repetitions (Google Benchmark:"
+  echo "\`_median\` rows) or over the states of a run, as each program says."
+  for s in "${all[@]}"; do
+    echo
+    if [[ -f $tmp/$s.md ]]; then
+      cat "$tmp/$s.md"
+    elif [[ -n $(old_section "$s") ]]; then
+      old_section "$s"
+    else
+      printf '<!-- section %s -->\n## %s\n\nNot measured yet: `scripts/write_benchmarks.sh %s`.\n<!-- end %s -->\n' \
+        "$s" "${title[$s]}" "$s" "$s"
+    fi
+  done
+} >"$tmp/page.md"
+mv "$tmp/page.md" "$out"
+echo "wrote $out" >&2
