@@ -547,27 +547,14 @@ inline DifferentialReport runDifferential(const DifferentialOptions& options) {
     CheckScratch scratch = octree.makeScratch();
     auto exact = fcl.makeScratch();
     const std::vector<Sample> samples = uniformSamples(scene, options.states_per_case, rng());
-    const RobotModel& robot = octree.robot();
     const Solids solids(scene);
     std::size_t case_missed = 0, case_beyond = 0;
     std::string first;  // the first failing state of the case
     auto note = [&](const Sample& s, const std::string& what) {
-      if (!first.empty()) return;
-      std::ostringstream out;
-      out.precision(17);
-      out << what << " at q = [";
-      for (std::size_t k = 0; k < s.q.size(); ++k) out << (k ? ", " : "") << s.q[k];
-      out << "], xyz = [" << s.X_WB.translation().transpose() << "], quat (xyzw) = ["
-          << Eigen::Quaterniond(s.X_WB.linear()).coeffs().transpose() << "]";
-      first = out.str();
+      if (first.empty()) first = what + " at " + describe(s);
     };
     for (const Sample& s : samples) {
-      fcl.setConfiguration(s.q.data(), s.q.size(), s.X_WB, *exact);
-      const bool fe = fcl.environmentInCollision(*exact);
-      const bool fs = fcl.selfInCollision(*exact);
-      robot.forwardKinematics(s.q.data(), s.q.size(), scratch.robot, s.X_WB);
-      const bool oe = octree.environmentInCollision(path, scratch);
-      const bool os = octree.selfInCollision(path, scratch);
+      const auto [fe, fs, oe, os] = answersAt(s, fcl, *exact, octree, path, scratch);
       tally.fcl_env += fe;
       tally.fcl_self += fs;
       if (fe && !oe) {

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <memory>
 #include <random>
+#include <sstream>
+#include <string>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -48,6 +50,35 @@ inline std::vector<Sample> uniformSamples(const PlanningScene& scene, std::size_
     }
   }
   return samples;
+}
+
+// A sample as one line, for failure messages: joint values, base position and orientation.
+inline std::string describe(const Sample& s) {
+  std::ostringstream out;
+  out.precision(17);
+  out << "q = [";
+  for (std::size_t k = 0; k < s.q.size(); ++k) out << (k ? ", " : "") << s.q[k];
+  out << "], X_WB.t = [" << s.X_WB.translation().transpose() << "], X_WB.R = ["
+      << Eigen::Quaterniond(s.X_WB.linear()).coeffs().transpose() << "] (xyzw)";
+  return out.str();
+}
+
+// FCL's and the octree model's answers at one sample (environment, self pairs); the octree's
+// link poses stay in `scratch` for further queries.
+struct Answers {
+  bool fcl_env, fcl_self, octree_env, octree_self;
+};
+inline Answers answersAt(const Sample& s, const FclCollisionModel& fcl,
+                         FclCollisionModel::Scratch& exact, const OctreeCollisionModel& octree,
+                         CheckerPath path, CheckScratch& scratch) {
+  fcl.setConfiguration(s.q.data(), s.q.size(), s.X_WB, exact);
+  Answers a;
+  a.fcl_env = fcl.environmentInCollision(exact);
+  a.fcl_self = fcl.selfInCollision(exact);
+  octree.robot().forwardKinematics(s.q.data(), s.q.size(), scratch.robot, s.X_WB);
+  a.octree_env = octree.environmentInCollision(path, scratch);
+  a.octree_self = octree.selfInCollision(path, scratch);
+  return a;
 }
 
 // The exact reference of a scene: FCL on its primitives and meshes. Point clouds and OctoMaps

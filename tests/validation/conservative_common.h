@@ -21,16 +21,6 @@ namespace octomotion::validation {
 inline constexpr std::size_t kStates = 10000;
 inline constexpr std::uint64_t kSeed = 0x5eed0001;
 
-inline std::string describe(const Sample& s) {
-  std::ostringstream out;
-  out.precision(17);
-  out << "q = [";
-  for (std::size_t k = 0; k < s.q.size(); ++k) out << (k ? ", " : "") << s.q[k];
-  out << "], X_WB.t = [" << s.X_WB.translation().transpose() << "], X_WB.R = ["
-      << Eigen::Quaterniond(s.X_WB.linear()).coeffs().transpose() << "] (xyzw)";
-  return out.str();
-}
-
 // What one run found: FCL's contacts and the octree checker's extra (false-positive) answers.
 struct ConservativeCounts {
   std::size_t fcl_env = 0, extra_env = 0, extra_self = 0;
@@ -54,7 +44,6 @@ inline ConservativeCounts checkConservative(const std::string& scene_file,
   const std::shared_ptr<const FclCollisionModel> reference = exactReference(scene);
   const FclCollisionModel& fcl = *reference;
   const CheckerPath path = checkerPathFromName(checker);
-  const RobotModel& robot = octree.robot();
   const Resolutions r = resolutionsOf(octree);
   // docs/validation.md §2: a voxel of each tree lies between the two surfaces.
   const double delta_env =
@@ -71,12 +60,7 @@ inline ConservativeCounts checkConservative(const std::string& scene_file,
   const std::vector<Sample> samples = uniformSamples(scene, kStates, kSeed);
   for (std::size_t i = begin; i < end; ++i) {
     const Sample& s = samples[i];
-    fcl.setConfiguration(s.q.data(), s.q.size(), s.X_WB, *exact);
-    const bool fe = fcl.environmentInCollision(*exact);
-    const bool fs = fcl.selfInCollision(*exact);
-    robot.forwardKinematics(s.q.data(), s.q.size(), scratch.robot, s.X_WB);
-    const bool oe = octree.environmentInCollision(path, scratch);
-    const bool os = octree.selfInCollision(path, scratch);
+    const auto [fe, fs, oe, os] = answersAt(s, fcl, *exact, octree, path, scratch);
     fcl_env += fe;
     fcl_self += fs;
     octree_env += oe;
