@@ -24,8 +24,8 @@
 #include "octomotion/motion/collides.h"
 #include "octomotion/octree/set_ops.h"
 #include "octomotion/octree/voxelize.h"
-#include "octomotion/planner/environment.h"
-#include "octomotion/planner/robot_model.h"
+#include "octomotion/planner/robot/robot_model.h"
+#include "octomotion/planner/scene/environment_geometry.h"
 #include "snake_robot.h"
 
 namespace {

@@ -28,7 +28,7 @@
 
 #include "octomotion/error.h"
 #include "octomotion/octree/rounding.h"
-#include "octomotion/planner/planning_scene.h"
+#include "octomotion/planner/ompl/planning_scene.h"
 
 namespace {
 

@@ -16,8 +16,8 @@
 
 #include "joint_states.h"
 #include "octomotion/error.h"
-#include "octomotion/planner/fcl_checker.h"
-#include "octomotion/planner/planning_scene.h"
+#include "octomotion/planner/ompl/planning_scene.h"
+#include "octomotion/planner/reference/fcl_checker.h"
 
 namespace {
 

@@ -18,7 +18,7 @@
 #include <string>
 #include <vector>
 
-#include "octomotion/planner/collision_model.h"
+#include "octomotion/planner/model/collision_model.h"
 #include "snake_robot.h"
 
 namespace {

@@ -12,8 +12,8 @@
 #include <ompl/util/Console.h>
 
 #include "octomotion/planner/gltf_export.h"
-#include "octomotion/planner/octree_validity_checker.h"
-#include "octomotion/planner/planning_scene.h"
+#include "octomotion/planner/ompl/octree_validity_checker.h"
+#include "octomotion/planner/ompl/planning_scene.h"
 
 using namespace octomotion;
 

@@ -5,7 +5,7 @@
 #include <string>
 
 #include "fuzz_support.h"
-#include "octomotion/planner/scene.h"
+#include "octomotion/planner/scene/scene.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "fuzz_support.h"
-#include "octomotion/planner/robot_model.h"
+#include "octomotion/planner/robot/robot_model.h"
 
 namespace {
 const std::string kDataDir = std::string(OCTOMOTION_SOURCE_DIR) + "/tests/data/urdf";

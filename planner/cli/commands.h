@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "octomotion/planner/planning_scene.h"
+#include "octomotion/planner/ompl/planning_scene.h"
 
 namespace octomotion::cli {
 

@@ -19,8 +19,8 @@
 #include "commands.h"
 #include "octomotion/error.h"
 #include "octomotion/input_limits.h"
-#include "octomotion/planner/octree_validity_checker.h"
-#include "octomotion/planner/planning_scene.h"
+#include "octomotion/planner/ompl/octree_validity_checker.h"
+#include "octomotion/planner/ompl/planning_scene.h"
 
 namespace {
 

@@ -19,7 +19,7 @@
 #include "octomotion/motion/move_tree.h"
 #include "octomotion/octree/bits.h"
 #include "octomotion/octree/mesh.h"
-#include "octomotion/planner/collision_meshes.h"
+#include "octomotion/planner/robot/collision_meshes.h"
 
 namespace octomotion {
 

@@ -20,9 +20,9 @@
 #include <ompl/util/RandomNumbers.h>
 
 #include "octomotion/octree/mesh.h"
-#include "octomotion/planner/fcl_checker.h"
-#include "octomotion/planner/fcl_octomap_checker.h"
-#include "octomotion/planner/octree_validity_checker.h"
+#include "octomotion/planner/ompl/octree_validity_checker.h"
+#include "octomotion/planner/reference/fcl_checker.h"
+#include "octomotion/planner/reference/fcl_octomap_checker.h"
 
 namespace octomotion {
 

@@ -11,7 +11,7 @@
 #include <random>
 #include <sstream>
 
-#include "octomotion/planner/collision_model.h"
+#include "octomotion/planner/model/collision_model.h"
 #include "snake_robot.h"
 
 namespace octomotion {

@@ -11,7 +11,7 @@
 
 #include "environment_answers.h"
 #include "joint_states.h"
-#include "octomotion/planner/collision_model.h"
+#include "octomotion/planner/model/collision_model.h"
 #include "primitive_scenes.h"
 #include "snake_robot.h"
 

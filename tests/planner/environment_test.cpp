@@ -9,7 +9,7 @@
 #include "octomotion/octree/octomap_io.h"
 #include "octomotion/octree/set_ops.h"
 #include "octomotion/octree/voxelize.h"
-#include "octomotion/planner/environment.h"
+#include "octomotion/planner/scene/environment_geometry.h"
 #include "octomotion/pointcloud/environment.h"
 #include "octomotion/pointcloud/point_cloud_io.h"
 

@@ -19,7 +19,7 @@
 
 #include "octomotion/error.h"
 #include "octomotion/motion/move_tree.h"
-#include "octomotion/planner/planning_scene.h"
+#include "octomotion/planner/ompl/planning_scene.h"
 
 namespace octomotion {
 namespace {

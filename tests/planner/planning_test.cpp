@@ -11,8 +11,8 @@
 #include <ompl/base/spaces/SE3StateSpace.h>
 #include <ompl/util/Console.h>
 
-#include "octomotion/planner/octree_validity_checker.h"
-#include "octomotion/planner/planning_scene.h"
+#include "octomotion/planner/ompl/octree_validity_checker.h"
+#include "octomotion/planner/ompl/planning_scene.h"
 
 namespace octomotion {
 namespace {

@@ -17,8 +17,8 @@
 
 #include "octomotion/error.h"
 #include "octomotion/octree/mesh.h"
-#include "octomotion/planner/package_locator.h"
-#include "octomotion/planner/robot_model.h"
+#include "octomotion/planner/robot/package_locator.h"
+#include "octomotion/planner/robot/robot_model.h"
 
 namespace octomotion {
 namespace {

@@ -7,7 +7,7 @@
 #include <filesystem>
 
 #include "octomotion/error.h"
-#include "octomotion/planner/scene.h"
+#include "octomotion/planner/scene/scene.h"
 
 namespace octomotion {
 namespace {

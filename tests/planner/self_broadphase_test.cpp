@@ -10,7 +10,7 @@
 
 #include "environment_answers.h"
 #include "joint_states.h"
-#include "octomotion/planner/collision_model.h"
+#include "octomotion/planner/model/collision_model.h"
 #include "snake_robot.h"
 
 namespace octomotion {

@@ -8,8 +8,8 @@
 #include <random>
 
 #include "joint_states.h"
-#include "octomotion/planner/collision_model.h"
-#include "octomotion/planner/planning_scene.h"
+#include "octomotion/planner/model/collision_model.h"
+#include "octomotion/planner/ompl/planning_scene.h"
 
 namespace octomotion {
 namespace {

@@ -12,10 +12,10 @@
 
 #include "joint_states.h"
 #include "octomotion/error.h"
-#include "octomotion/planner/collision_model.h"
-#include "octomotion/planner/fcl_checker.h"
-#include "octomotion/planner/joint_space_table.h"
-#include "octomotion/planner/planning_scene.h"
+#include "octomotion/planner/model/collision_model.h"
+#include "octomotion/planner/model/joint_space_table.h"
+#include "octomotion/planner/ompl/planning_scene.h"
+#include "octomotion/planner/reference/fcl_checker.h"
 
 namespace octomotion {
 namespace {

@@ -6,7 +6,7 @@
 
 #include <ompl/util/Console.h>
 
-#include "octomotion/planner/planning_scene.h"
+#include "octomotion/planner/ompl/planning_scene.h"
 
 namespace octomotion {
 namespace {

@@ -23,8 +23,8 @@
 #include "octomotion/octree/io.h"
 #include "octomotion/octree/mesh.h"
 #include "octomotion/octree/octomap_io.h"
-#include "octomotion/planner/planning_scene.h"
-#include "octomotion/planner/robot_model.h"
+#include "octomotion/planner/ompl/planning_scene.h"
+#include "octomotion/planner/robot/robot_model.h"
 #include "octomotion/pointcloud/point_cloud_io.h"
 
 namespace octomotion {

@@ -24,11 +24,11 @@
 #include "octomotion/error.h"
 #include "octomotion/octree/mesh.h"
 #include "octomotion/planner/gltf_export.h"
-#include "octomotion/planner/octree_validity_checker.h"
-#include "octomotion/planner/package_locator.h"
-#include "octomotion/planner/planning_scene.h"
-#include "octomotion/planner/robot_model.h"
-#include "octomotion/planner/scene.h"
+#include "octomotion/planner/ompl/octree_validity_checker.h"
+#include "octomotion/planner/ompl/planning_scene.h"
+#include "octomotion/planner/robot/package_locator.h"
+#include "octomotion/planner/robot/robot_model.h"
+#include "octomotion/planner/scene/scene.h"
 
 namespace octomotion {
 namespace {

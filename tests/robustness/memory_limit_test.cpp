@@ -16,7 +16,7 @@
 
 #include "octomotion/error.h"
 #include "octomotion/octree/octomap_io.h"
-#include "octomotion/planner/planning_scene.h"
+#include "octomotion/planner/ompl/planning_scene.h"
 #include "octomotion/pointcloud/point_cloud_io.h"
 
 namespace octomotion {

@@ -17,8 +17,8 @@
 #include <ompl/util/Console.h>
 #include <ompl/util/RandomNumbers.h>
 
-#include "octomotion/planner/octree_validity_checker.h"
-#include "octomotion/planner/planning_scene.h"
+#include "octomotion/planner/ompl/octree_validity_checker.h"
+#include "octomotion/planner/ompl/planning_scene.h"
 
 namespace octomotion {
 namespace {

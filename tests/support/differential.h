@@ -29,7 +29,7 @@
 #include "generated_meshes.h"
 #include "octomotion/octree/mesh.h"
 #include "octomotion/octree/shapes.h"
-#include "octomotion/planner/collision_meshes.h"
+#include "octomotion/planner/robot/collision_meshes.h"
 
 namespace octomotion::validation {
 

@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "octomotion/planner/collision_model.h"
+#include "octomotion/planner/model/collision_model.h"
 
 namespace octomotion::test {
 

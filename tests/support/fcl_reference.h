@@ -12,8 +12,8 @@
 
 #include <Eigen/Geometry>
 
-#include "octomotion/planner/fcl_checker.h"
-#include "octomotion/planner/planning_scene.h"
+#include "octomotion/planner/ompl/planning_scene.h"
+#include "octomotion/planner/reference/fcl_checker.h"
 
 namespace octomotion::validation {
 

@@ -6,7 +6,7 @@
 #include <random>
 #include <vector>
 
-#include "octomotion/planner/robot_model.h"
+#include "octomotion/planner/robot/robot_model.h"
 
 namespace octomotion::test {
 

@@ -9,7 +9,7 @@
 
 #include <Eigen/Geometry>
 
-#include "octomotion/planner/scene.h"
+#include "octomotion/planner/scene/scene.h"
 
 namespace octomotion::test {
 

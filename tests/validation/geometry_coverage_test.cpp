@@ -12,7 +12,7 @@
 #include "collada_scenes.h"
 #include "conservative_common.h"
 #include "octomotion/octree/mesh.h"
-#include "octomotion/planner/collision_meshes.h"
+#include "octomotion/planner/robot/collision_meshes.h"
 #include "surface_coverage.h"
 
 namespace octomotion::validation {

@@ -15,8 +15,8 @@
 #include <Eigen/Geometry>
 
 #include "fcl_reference.h"
-#include "octomotion/planner/fcl_checker.h"
-#include "octomotion/planner/planning_scene.h"
+#include "octomotion/planner/ompl/planning_scene.h"
+#include "octomotion/planner/reference/fcl_checker.h"
 
 namespace octomotion::validation {
 

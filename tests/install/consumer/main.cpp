@@ -4,7 +4,7 @@
 
 #include <octomotion/octree/octree.h>
 #include <octomotion/octree/traversal.h>
-#include <octomotion/planner/scene.h>
+#include <octomotion/planner/scene/scene.h>
 
 int main() {
   using namespace octomotion;

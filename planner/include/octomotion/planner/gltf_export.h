@@ -21,7 +21,7 @@
 
 #include <Eigen/Geometry>
 
-#include "octomotion/planner/collision_model.h"
+#include "octomotion/planner/model/collision_model.h"
 
 namespace octomotion {
 

@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "octomotion/planner/collision_model.h"
-#include "octomotion/planner/planning_scene.h"
+#include "octomotion/planner/model/collision_model.h"
+#include "octomotion/planner/ompl/planning_scene.h"
 
 namespace octomotion {
 

@@ -1,4 +1,4 @@
-#include "octomotion/planner/fcl_checker.h"
+#include "octomotion/planner/reference/fcl_checker.h"
 
 #include <limits>
 
@@ -7,8 +7,8 @@
 #include <fcl/narrowphase/distance.h>
 #include <ompl/base/SpaceInformation.h>
 
-#include "fcl_robot.h"
-#include "octomotion/planner/octree_validity_checker.h"
+#include "internal/fcl_robot.h"
+#include "octomotion/planner/ompl/octree_validity_checker.h"
 
 namespace octomotion {
 

@@ -11,7 +11,7 @@
 #include <utility>
 
 #include "octomotion/octree/mesh.h"
-#include "octomotion/planner/robot_model.h"
+#include "octomotion/planner/robot/robot_model.h"
 
 namespace octomotion {
 

@@ -18,11 +18,11 @@
 #include <tinyxml.h>
 #include <urdf_parser/urdf_parser.h>
 
+#include "internal/robot_model_builder.h"
+#include "internal/xml_text.h"
 #include "octomotion/input_limits.h"
-#include "octomotion/planner/package_locator.h"
-#include "octomotion/planner/robot_model.h"
-#include "robot_model_builder.h"
-#include "xml_text.h"
+#include "octomotion/planner/robot/package_locator.h"
+#include "octomotion/planner/robot/robot_model.h"
 
 namespace octomotion {
 namespace {

@@ -1,4 +1,4 @@
-#include "octomotion/planner/package_locator.h"
+#include "octomotion/planner/robot/package_locator.h"
 
 #include <algorithm>
 #include <cstdlib>
@@ -10,8 +10,8 @@
 
 #include <tinyxml.h>
 
+#include "internal/xml_text.h"
 #include "octomotion/error.h"
-#include "xml_text.h"
 
 namespace octomotion {
 namespace {

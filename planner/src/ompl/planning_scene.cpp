@@ -1,4 +1,4 @@
-#include "octomotion/planner/planning_scene.h"
+#include "octomotion/planner/ompl/planning_scene.h"
 
 #include <cmath>
 #include <filesystem>
@@ -28,8 +28,8 @@
 #include <ompl/util/RandomNumbers.h>
 
 #include "octomotion/octree/mesh.h"
-#include "octomotion/planner/collision_meshes.h"
-#include "octomotion/planner/octree_validity_checker.h"
+#include "octomotion/planner/ompl/octree_validity_checker.h"
+#include "octomotion/planner/robot/collision_meshes.h"
 
 namespace octomotion {
 

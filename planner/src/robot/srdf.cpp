@@ -9,9 +9,9 @@
 
 #include <tinyxml.h>
 
+#include "internal/xml_text.h"
 #include "octomotion/input_limits.h"
-#include "octomotion/planner/robot_model.h"
-#include "xml_text.h"
+#include "octomotion/planner/robot/robot_model.h"
 
 namespace octomotion {
 

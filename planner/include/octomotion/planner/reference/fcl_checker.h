@@ -16,10 +16,10 @@
 
 #include <ompl/base/StateValidityChecker.h>
 
-#include "octomotion/planner/collision_model.h"
-#include "octomotion/planner/environment.h"
-#include "octomotion/planner/octree_validity_checker.h"
-#include "octomotion/planner/robot_model.h"
+#include "octomotion/planner/model/collision_model.h"
+#include "octomotion/planner/ompl/octree_validity_checker.h"
+#include "octomotion/planner/robot/robot_model.h"
+#include "octomotion/planner/scene/environment_geometry.h"
 
 namespace octomotion {
 

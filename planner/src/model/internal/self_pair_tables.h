@@ -7,8 +7,8 @@
 
 #include "octomotion/octree/mesh.h"
 #include "octomotion/octree/octree.h"
-#include "octomotion/planner/joint_space_table.h"
-#include "octomotion/planner/robot_model.h"
+#include "octomotion/planner/model/joint_space_table.h"
+#include "octomotion/planner/robot/robot_model.h"
 
 namespace octomotion::detail {
 

@@ -15,10 +15,10 @@
 #include <ompl/geometric/PathGeometric.h>
 #include <ompl/geometric/SimpleSetup.h>
 
-#include "octomotion/planner/collision_model.h"
-#include "octomotion/planner/fcl_checker.h"
-#include "octomotion/planner/fcl_octomap_checker.h"
-#include "octomotion/planner/scene.h"
+#include "octomotion/planner/model/collision_model.h"
+#include "octomotion/planner/reference/fcl_checker.h"
+#include "octomotion/planner/reference/fcl_octomap_checker.h"
+#include "octomotion/planner/scene/scene.h"
 
 namespace octomotion {
 

@@ -1,4 +1,4 @@
-#include "octomotion/planner/collision_model.h"
+#include "octomotion/planner/model/collision_model.h"
 
 #include <algorithm>
 #include <atomic>
@@ -12,6 +12,7 @@
 #include <system_error>
 #include <thread>
 
+#include "internal/self_pair_tables.h"
 #include "octomotion/motion/box_overlap.h"
 #include "octomotion/motion/collides.h"
 #include "octomotion/motion/move_tree.h"
@@ -23,8 +24,7 @@
 #include "octomotion/octree/shapes.h"
 #include "octomotion/octree/traversal.h"
 #include "octomotion/octree/voxelize.h"
-#include "octomotion/planner/collision_meshes.h"
-#include "self_pair_tables.h"
+#include "octomotion/planner/robot/collision_meshes.h"
 
 namespace octomotion {
 

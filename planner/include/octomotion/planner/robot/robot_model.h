@@ -25,7 +25,7 @@
 #include <Eigen/StdVector>
 
 #include "octomotion/error.h"
-#include "octomotion/planner/collision_geometry.h"
+#include "octomotion/planner/robot/collision_geometry.h"
 
 namespace octomotion {
 

@@ -1,11 +1,11 @@
-#include "octomotion/planner/robot_model.h"
+#include "octomotion/planner/robot/robot_model.h"
 
 #include <cmath>
 #include <filesystem>
 #include <system_error>
 
+#include "internal/robot_model_builder.h"
 #include "octomotion/motion/sin_cos.h"
-#include "robot_model_builder.h"
 
 namespace octomotion {
 

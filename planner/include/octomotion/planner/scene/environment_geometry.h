@@ -12,7 +12,7 @@
 #include "octomotion/error.h"
 #include "octomotion/octree/mesh.h"
 #include "octomotion/octree/octree.h"
-#include "octomotion/planner/scene.h"
+#include "octomotion/planner/scene/scene.h"
 
 namespace octomotion {
 

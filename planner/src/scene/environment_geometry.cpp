@@ -1,4 +1,4 @@
-#include "octomotion/planner/environment.h"
+#include "octomotion/planner/scene/environment_geometry.h"
 
 #include <chrono>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "octomotion/planner/joint_space_table.h"
+#include "octomotion/planner/model/joint_space_table.h"
 
 #include <algorithm>
 #include <cmath>

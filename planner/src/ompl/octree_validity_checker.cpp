@@ -1,4 +1,4 @@
-#include "octomotion/planner/octree_validity_checker.h"
+#include "octomotion/planner/ompl/octree_validity_checker.h"
 
 #include <cmath>
 #include <limits>

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "octomotion/planner/robot_model.h"
+#include "octomotion/planner/robot/robot_model.h"
 
 namespace octomotion {
 

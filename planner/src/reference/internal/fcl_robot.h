@@ -15,7 +15,7 @@
 
 #include "octomotion/octree/mesh.h"
 #include "octomotion/octree/shapes.h"
-#include "octomotion/planner/robot_model.h"
+#include "octomotion/planner/robot/robot_model.h"
 
 namespace octomotion::fcl_internal {
 

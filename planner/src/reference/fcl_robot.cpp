@@ -1,4 +1,4 @@
-#include "fcl_robot.h"
+#include "internal/fcl_robot.h"
 
 #include <algorithm>
 #include <array>
@@ -14,7 +14,7 @@
 #include <fcl/narrowphase/collision.h>
 #include <fcl/narrowphase/distance.h>
 
-#include "octomotion/planner/collision_meshes.h"
+#include "octomotion/planner/robot/collision_meshes.h"
 
 namespace octomotion::fcl_internal {
 

@@ -1,4 +1,4 @@
-#include "octomotion/planner/fcl_octomap_checker.h"
+#include "octomotion/planner/reference/fcl_octomap_checker.h"
 
 #include <chrono>
 
@@ -7,10 +7,10 @@
 #include <octomap/OcTree.h>
 #include <ompl/base/SpaceInformation.h>
 
-#include "fcl_robot.h"
+#include "internal/fcl_robot.h"
 #include "octomotion/octree/octomap_io.h"
-#include "octomotion/planner/collision_model.h"
-#include "octomotion/planner/octree_validity_checker.h"
+#include "octomotion/planner/model/collision_model.h"
+#include "octomotion/planner/ompl/octree_validity_checker.h"
 
 namespace octomotion {
 

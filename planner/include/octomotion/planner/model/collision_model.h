@@ -25,9 +25,9 @@
 #include "octomotion/motion/primitive_contact.h"
 #include "octomotion/octree/octree.h"
 #include "octomotion/octree/rounding.h"
-#include "octomotion/planner/environment.h"
-#include "octomotion/planner/joint_space_table.h"
-#include "octomotion/planner/robot_model.h"
+#include "octomotion/planner/model/joint_space_table.h"
+#include "octomotion/planner/robot/robot_model.h"
+#include "octomotion/planner/scene/environment_geometry.h"
 #include "octomotion/pointcloud/point_octree.h"
 
 namespace octomotion {

@@ -1,4 +1,4 @@
-#include "octomotion/planner/scene.h"
+#include "octomotion/planner/scene/scene.h"
 
 #include <cmath>
 #include <cstring>

@@ -1,4 +1,4 @@
-#include "self_pair_tables.h"
+#include "internal/self_pair_tables.h"
 
 #include <algorithm>
 #include <cmath>
@@ -11,7 +11,7 @@
 #include <fcl/narrowphase/collision.h>
 #include <fcl/narrowphase/distance.h>
 
-#include "fcl_robot.h"
+#include "../reference/internal/fcl_robot.h"
 
 namespace octomotion::detail {
 

@@ -18,7 +18,7 @@
 #include <ompl/base/spaces/RealVectorStateSpace.h>
 #include <ompl/base/spaces/SE3StateSpace.h>
 
-#include "octomotion/planner/collision_model.h"
+#include "octomotion/planner/model/collision_model.h"
 
 namespace octomotion {
 
