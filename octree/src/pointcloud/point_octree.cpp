@@ -287,25 +287,26 @@ void PointOctree::buildFrom(std::uint32_t node, const Cell& cell, int depth, Ent
   }
 }
 
-void PointOctree::kNearest(const Eigen::Vector3f& q, std::size_t k,
-                           std::vector<Neighbour>* out) const {
-  out->clear();
-  if (k == 0 || empty() || !q.allFinite()) return;
-  // `out` is kept sorted by distance and at most k long; `worst` is the pruning bound.
-  float worst = std::numeric_limits<float>::infinity();
+// The one branch-and-bound descent of the three searches. `search` supplies
+//   float bound(): squared distance beyond which a cell is pruned (it may shrink as points come);
+//   void visit(std::uint32_t id, float distance2): a stored point and its squared distance;
+// kNearestFirst: children are visited nearest first (the bound shrinks sooner), else in label
+// order.
+// An explicit stack: at most 8 frames per level.
+template <bool kNearestFirst, class Search>
+void PointOctree::descend(const Eigen::Vector3f& q, Search& search) const {
   const float qx = q.x(), qy = q.y(), qz = q.z();
   struct Frame {
     std::uint32_t node;
     Cell cell;
   };
-  // Depth-first, nearest child first; an explicit stack (at most 8 per level).
   Frame stack[8 * (kMaxSupportedDepth + 1)];
   int top = 0;
   stack[top++] = {0, rootCell()};
   while (top > 0) {
     const Frame f = stack[--top];
-    if (out->size() == k &&
-        minDistance2(q, f.cell.cx, f.cell.cy, f.cell.cz, f.cell.half) * kPruneSlack > worst)
+    if (minDistance2(q, f.cell.cx, f.cell.cy, f.cell.cz, f.cell.half) * kPruneSlack >
+        search.bound())
       continue;
     const Node& n = nodes_[f.node];
     if (n.first_child == kNone) {
@@ -313,77 +314,81 @@ void PointOctree::kNearest(const Eigen::Vector3f& q, std::size_t k,
         const Entry* es = &entries_[static_cast<std::size_t>(b) * kChunk];
         for (std::uint32_t i = 0; i < bucket_count_[b]; ++i) {
           const float dx = es[i].x - qx, dy = es[i].y - qy, dz = es[i].z - qz;
-          const float d2 = dx * dx + dy * dy + dz * dz;
-          if (out->size() == k && !(d2 < worst)) continue;
-          // Insertion into the sorted list.
-          if (out->size() < k) out->push_back({});
-          std::size_t j = out->size() - 1;
-          while (j > 0 && (*out)[j - 1].distance2 > d2) {
-            (*out)[j] = (*out)[j - 1];
-            --j;
-          }
-          (*out)[j] = {es[i].id, d2};
-          if (out->size() == k) worst = out->back().distance2;
+          search.visit(es[i].id, dx * dx + dy * dy + dz * dz);
         }
       }
       continue;
     }
-    // Push children farthest first so the nearest is popped first.
-    double dist[8];
-    int order[8];
-    int m = 0;
-    for (int c = 0; c < 8; ++c) {
-      if (nodes_[n.first_child + static_cast<std::uint32_t>(c)].count == 0) continue;
-      const Cell child = f.cell.child(c);
-      const double d = minDistance2(q, child.cx, child.cy, child.cz, child.half);
-      if (out->size() == k && d * kPruneSlack > worst) continue;
-      int j = m++;
-      while (j > 0 && dist[j - 1] < d) {
-        dist[j] = dist[j - 1];
-        order[j] = order[j - 1];
+    if constexpr (kNearestFirst) {
+      // Pushed farthest first, so the nearest is popped first.
+      double dist[8];
+      int order[8];
+      int m = 0;
+      for (int c = 0; c < 8; ++c) {
+        if (nodes_[n.first_child + static_cast<std::uint32_t>(c)].count == 0) continue;
+        const Cell child = f.cell.child(c);
+        const double d = minDistance2(q, child.cx, child.cy, child.cz, child.half);
+        if (d * kPruneSlack > search.bound()) continue;
+        int j = m++;
+        while (j > 0 && dist[j - 1] < d) {
+          dist[j] = dist[j - 1];
+          order[j] = order[j - 1];
+          --j;
+        }
+        dist[j] = d;
+        order[j] = c;
+      }
+      for (int j = 0; j < m; ++j) {
+        stack[top++] = {n.first_child + static_cast<std::uint32_t>(order[j]),
+                        f.cell.child(order[j])};
+      }
+    } else {
+      for (int c = 0; c < 8; ++c) {
+        if (nodes_[n.first_child + static_cast<std::uint32_t>(c)].count == 0) continue;
+        stack[top++] = {n.first_child + static_cast<std::uint32_t>(c), f.cell.child(c)};
+      }
+    }
+  }
+}
+
+void PointOctree::kNearest(const Eigen::Vector3f& q, std::size_t k,
+                           std::vector<Neighbour>* out) const {
+  out->clear();
+  if (k == 0 || empty() || !q.allFinite()) return;
+  // `out` is kept sorted by distance and at most k long; once full, its last entry bounds.
+  struct Search {
+    std::vector<Neighbour>& out;
+    std::size_t k;
+    float worst = std::numeric_limits<float>::infinity();
+    float bound() const { return out.size() == k ? worst : std::numeric_limits<float>::infinity(); }
+    void visit(std::uint32_t id, float d2) {
+      if (out.size() == k && !(d2 < worst)) return;
+      if (out.size() < k) out.push_back({});
+      std::size_t j = out.size() - 1;
+      while (j > 0 && out[j - 1].distance2 > d2) {
+        out[j] = out[j - 1];
         --j;
       }
-      dist[j] = d;
-      order[j] = c;
+      out[j] = {id, d2};
+      if (out.size() == k) worst = out.back().distance2;
     }
-    for (int j = 0; j < m; ++j)
-      stack[top++] = {n.first_child + static_cast<std::uint32_t>(order[j]), f.cell.child(order[j])};
-  }
+  } search{*out, k};
+  descend<true>(q, search);
 }
 
 void PointOctree::radiusSearch(const Eigen::Vector3f& q, float radius,
                                std::vector<Neighbour>* out) const {
   out->clear();
   if (empty() || !q.allFinite() || !(radius >= 0)) return;
-  const float r2 = radius * radius;
-  const float qx = q.x(), qy = q.y(), qz = q.z();
-  struct Frame {
-    std::uint32_t node;
-    Cell cell;
-  };
-  Frame stack[8 * (kMaxSupportedDepth + 1)];
-  int top = 0;
-  stack[top++] = {0, rootCell()};
-  while (top > 0) {
-    const Frame f = stack[--top];
-    if (minDistance2(q, f.cell.cx, f.cell.cy, f.cell.cz, f.cell.half) * kPruneSlack > r2) continue;
-    const Node& n = nodes_[f.node];
-    if (n.first_child == kNone) {
-      for (std::uint32_t b = n.bucket; b != kNone; b = bucket_next_[b]) {
-        const Entry* es = &entries_[static_cast<std::size_t>(b) * kChunk];
-        for (std::uint32_t i = 0; i < bucket_count_[b]; ++i) {
-          const float dx = es[i].x - qx, dy = es[i].y - qy, dz = es[i].z - qz;
-          const float d2 = dx * dx + dy * dy + dz * dz;
-          if (d2 <= r2) out->push_back({es[i].id, d2});
-        }
-      }
-      continue;
+  struct Search {
+    std::vector<Neighbour>& out;
+    float r2;
+    float bound() const { return r2; }
+    void visit(std::uint32_t id, float d2) {
+      if (d2 <= r2) out.push_back({id, d2});
     }
-    for (int c = 0; c < 8; ++c) {
-      if (nodes_[n.first_child + static_cast<std::uint32_t>(c)].count == 0) continue;
-      stack[top++] = {n.first_child + static_cast<std::uint32_t>(c), f.cell.child(c)};
-    }
-  }
+  } search{*out, radius * radius};
+  descend<false>(q, search);
 }
 
 double PointOctree::nearestDistance(const Eigen::Vector3f& q) const {
@@ -392,60 +397,22 @@ double PointOctree::nearestDistance(const Eigen::Vector3f& q) const {
 
 double PointOctree::nearestDistance(const Eigen::Vector3f& q, double upper_bound) const {
   if (empty() || !q.allFinite()) return std::numeric_limits<double>::infinity();
-  // k = 1 specialised: one running best, nearest child first, no output vector. Starting from
-  // the caller's bound prunes every cell farther than it (the bound is rounded up to float so no
-  // point nearer than it is pruned).
-  float best = std::numeric_limits<float>::infinity();
+  // k = 1 without an output vector. Starting from the caller's bound prunes every cell farther
+  // than it (the bound is rounded up to float so no point nearer than it is pruned).
+  struct Search {
+    float best = std::numeric_limits<float>::infinity();
+    float bound() const { return best; }
+    void visit(std::uint32_t, float d2) { best = std::min(best, d2); }
+  } search;
   if (upper_bound < std::numeric_limits<double>::infinity()) {
     const double b2 = std::max(0.0, upper_bound) * std::max(0.0, upper_bound);
-    best = b2 < static_cast<double>(std::numeric_limits<float>::max())
-               ? std::nextafter(static_cast<float>(b2), std::numeric_limits<float>::infinity())
-               : std::numeric_limits<float>::infinity();
+    search.best =
+        b2 < static_cast<double>(std::numeric_limits<float>::max())
+            ? std::nextafter(static_cast<float>(b2), std::numeric_limits<float>::infinity())
+            : std::numeric_limits<float>::infinity();
   }
-  const float qx = q.x(), qy = q.y(), qz = q.z();
-  struct Frame {
-    std::uint32_t node;
-    Cell cell;
-  };
-  Frame stack[8 * (kMaxSupportedDepth + 1)];
-  int top = 0;
-  stack[top++] = {0, rootCell()};
-  while (top > 0) {
-    const Frame f = stack[--top];
-    if (minDistance2(q, f.cell.cx, f.cell.cy, f.cell.cz, f.cell.half) * kPruneSlack > best)
-      continue;
-    const Node& n = nodes_[f.node];
-    if (n.first_child == kNone) {
-      for (std::uint32_t b = n.bucket; b != kNone; b = bucket_next_[b]) {
-        const Entry* es = &entries_[static_cast<std::size_t>(b) * kChunk];
-        for (std::uint32_t i = 0; i < bucket_count_[b]; ++i) {
-          const float dx = es[i].x - qx, dy = es[i].y - qy, dz = es[i].z - qz;
-          best = std::min(best, dx * dx + dy * dy + dz * dz);
-        }
-      }
-      continue;
-    }
-    double dist[8];
-    int order[8];
-    int m = 0;
-    for (int c = 0; c < 8; ++c) {
-      if (nodes_[n.first_child + static_cast<std::uint32_t>(c)].count == 0) continue;
-      const Cell child = f.cell.child(c);
-      const double d = minDistance2(q, child.cx, child.cy, child.cz, child.half);
-      if (d * kPruneSlack > best) continue;
-      int j = m++;
-      while (j > 0 && dist[j - 1] < d) {
-        dist[j] = dist[j - 1];
-        order[j] = order[j - 1];
-        --j;
-      }
-      dist[j] = d;
-      order[j] = c;
-    }
-    for (int j = 0; j < m; ++j)
-      stack[top++] = {n.first_child + static_cast<std::uint32_t>(order[j]), f.cell.child(order[j])};
-  }
-  return std::sqrt(static_cast<double>(best));
+  descend<true>(q, search);
+  return std::sqrt(static_cast<double>(search.best));
 }
 
 std::size_t PointOctree::leafCount() const {

@@ -116,6 +116,9 @@ class PointOctree {
   void collapse(std::uint32_t node);
   template <class F>
   void forEachEntryBelow(std::uint32_t node, F&& f) const;
+  // The branch-and-bound descent shared by kNearest, radiusSearch and nearestDistance.
+  template <bool kNearestFirst, class Search>
+  void descend(const Eigen::Vector3f& q, Search& search) const;
   void buildFrom(std::uint32_t node, const Cell& cell, int depth, Entry* begin, Entry* end,
                  Entry* scratch);
   void checkPoint(const Eigen::Vector3f& p, const char* what) const;
