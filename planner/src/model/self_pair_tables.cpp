@@ -11,7 +11,7 @@
 #include <fcl/narrowphase/collision.h>
 #include <fcl/narrowphase/distance.h>
 
-#include "../reference/internal/fcl_robot.h"
+#include "../robot/internal/fcl_robot.h"
 
 namespace octomotion::detail {
 

@@ -7,7 +7,7 @@
 #include <fcl/narrowphase/distance.h>
 #include <ompl/base/SpaceInformation.h>
 
-#include "internal/fcl_robot.h"
+#include "../robot/internal/fcl_robot.h"
 #include "octomotion/planner/ompl/octree_validity_checker.h"
 
 namespace octomotion {

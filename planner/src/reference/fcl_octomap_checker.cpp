@@ -7,7 +7,7 @@
 #include <octomap/OcTree.h>
 #include <ompl/base/SpaceInformation.h>
 
-#include "internal/fcl_robot.h"
+#include "../robot/internal/fcl_robot.h"
 #include "octomotion/octree/octomap_io.h"
 #include "octomotion/planner/model/collision_model.h"
 #include "octomotion/planner/ompl/octree_validity_checker.h"

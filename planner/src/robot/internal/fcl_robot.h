@@ -1,5 +1,5 @@
-// Private to the planner library: the robot as FCL objects, shared by the two FCL reference
-// checkers (exact environment, FclCollisionModel; OctoMap environment, FclOctomapCollisionModel).
+// Private to the planner library: the robot as FCL objects, shared by the two FCL references
+// (FclCollisionModel, FclOctomapCollisionModel) and the self-pair tables' build-time oracle.
 // Written the way a careful FCL user would: geometry built once, each query only poses the
 // objects, pre-tests world AABBs before any narrow phase and reuses its request/result.
 #pragma once
