@@ -32,8 +32,8 @@ const char* kUsage = R"(usage: tradeoff_bench [options]
 The trade study of `octomotion bench` over every scene in a directory, with these defaults:
 --out-dir tradeoff-results --move-tree-states 2000 --planners RRTConnect:5,RRTstar:1
 options:
-  --scenes DIR               scene directory (default robots/scenes); every *.yaml in it
-  --only NAME[,NAME]         only these scene files (stems, e.g. bookshelf)
+  --scenes DIR             scene directory (default robots/scenes); every *.yaml in it
+  --only NAME[,NAME]       only these scene files (stems, e.g. bookshelf)
 )";
 
 int run(int argc, char** argv) {

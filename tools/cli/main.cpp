@@ -38,8 +38,8 @@ options:
 
 // After the scene options (tools::sceneOptions()).
 const char* kUsageTail =
-    R"(  --interpolation METRES     plan: spacing of the written path's states (default: OMPL's)
-  --verbose                  OMPL's log messages on stderr
+    R"(  --interpolation METRES   plan: spacing of the written path's states (default: OMPL's)
+  --verbose                OMPL's log messages on stderr
 )";
 
 struct Args {

@@ -1,22 +1,15 @@
+// The trade study's runner: the scene, the state set, the timed passes of every setting.
 #include "octomotion/tools/trade_study.h"
 
 #include <algorithm>
-#include <cctype>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <ctime>
 #include <functional>
-#include <iomanip>
-#include <map>
 #include <memory>
 #include <ostream>
 #include <random>
-#include <sstream>
 
-#include <ompl/base/spaces/SE3StateSpace.h>
-#include <ompl/geometric/SimpleSetup.h>
-#include <ompl/tools/benchmark/Benchmark.h>
 #include <ompl/util/RandomNumbers.h>
 
 #include "octomotion/octree/mesh.h"
@@ -29,7 +22,6 @@
 namespace octomotion {
 
 namespace ob = ompl::base;
-namespace og = ompl::geometric;
 using Clock = std::chrono::steady_clock;
 
 using namespace trade_study_internal;

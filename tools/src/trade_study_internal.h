@@ -20,7 +20,7 @@ struct StudyScene {
   SceneSpec spec;
   std::optional<RobotModel> robot;
   std::shared_ptr<const EnvironmentGeometry> environment;
-  double robot_diagonal = 0;
+  double robot_diagonal = 0;  // boundMotionStep's reach (arms: until a model gives theirs)
   std::optional<Eigen::AlignedBox3d> bounds;  // free-flying: SE(3) position bounds
   double resolution = 0;                      // the scene's own (or auto) resolution
 };
