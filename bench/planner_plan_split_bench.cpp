@@ -137,8 +137,7 @@ double benchmarkAddedTime(ompl::geometric::SimpleSetup& ss, const std::vector<do
 }
 
 Split measure(const std::string& scene_path, double resolution, Rounding rounding,
-              const std::string& checker, const std::string& planner_name, int runs,
-              double clock_pair) {
+              CheckerKind checker, const std::string& planner_name, int runs, double clock_pair) {
   SceneOverrides overrides;
   overrides.resolution = resolution;
   overrides.rounding = rounding;
@@ -197,15 +196,16 @@ int run(int argc, char** argv) {
       argv[1], resolution, toString(rounding), planner.c_str(), runs, clock_pair * 1e9);
   std::printf("%-13s %7s %9s %9s %9s %9s %9s %9s\n", "checker", "solved", "solve ms", "mean ms",
               "checks", "check ms", "us/check", "rest ms");
-  const char* checkers[] = {"octree-fused", "fcl"};
+  const CheckerKind checkers[] = {CheckerKind::kOctreeFused, CheckerKind::kFcl};
   Split splits[2];
   for (int c = 0; c < 2; ++c) {
     const Split& s = splits[c] =
         measure(argv[1], resolution, rounding, checkers[c], planner, runs, clock_pair);
     const double per_check = mean(s.check_s) / std::max(1.0, mean(s.checks));
-    std::printf("%-13s %3d/%-3d %9.3f %9.3f %9.0f %9.3f %9.3f %9.3f\n", checkers[c], s.solved, runs,
-                median(s.solve) * 1e3, mean(s.solve) * 1e3, mean(s.checks), mean(s.check_s) * 1e3,
-                per_check * 1e6, mean(s.rest) * 1e3);
+    std::printf("%-13s %3d/%-3d %9.3f %9.3f %9.0f %9.3f %9.3f %9.3f\n",
+                checkerKindName(checkers[c]), s.solved, runs, median(s.solve) * 1e3,
+                mean(s.solve) * 1e3, mean(s.checks), mean(s.check_s) * 1e3, per_check * 1e6,
+                mean(s.rest) * 1e3);
   }
   auto ratio = [](double a, double b) { return b > 0 ? a / b : 0.0; };
   std::printf(

@@ -12,69 +12,37 @@
 // these commands regenerate them; docs/trade-off.md lists the study's commands.
 #include <algorithm>
 #include <chrono>
-#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include <ompl/util/Console.h>
 
 #include "octomotion/error.h"
-#include "octomotion/planner/trade_study.h"
+#include "octomotion/tools/study_options.h"
+#include "octomotion/tools/trade_study.h"
 
 namespace {
 
 using namespace octomotion;
 
 const char* kUsage = R"(usage: tradeoff_bench [options]
-  --scenes DIR            scene directory (default robots/scenes); every *.yaml in it
-  --only NAME[,NAME]      only these scene files (stems, e.g. bookshelf)
-  --out-dir DIR           output directory (default tradeoff-results)
-  --states N              uniform states per scene (default 20000)
-  --move-tree-states N    states for the slow moveTree path (default 2000)
-  --runs N                planning runs per planner and setting (default 20)
-  --planners NAME[:S],..  default RRTConnect:5,RRTstar:1
-  --no-fcl-octomap        leave out FCL+OctoMap
-  --link-ratio R          octree link trees at R x each resolution (default 0.25, the library's)
-  --self-link-ratio R     self-collision link trees at R x each resolution (default: --link-ratio
-                          if given, else 1, the library's defaults)
-  --self-pair-tables on|off  joint-space tables for self pairs (default: the scene's setting)
-  --exact-primitives on|off  the links tested against primitives' exact shapes (default: the
-                           scene's setting)
+The trade study of `octomotion bench` over every scene in a directory, with these defaults:
+--out-dir tradeoff-results --move-tree-states 2000 --planners RRTConnect:5,RRTstar:1
+options:
+  --scenes DIR             scene directory (default robots/scenes); every *.yaml in it
+  --only NAME[,NAME]       only these scene files (stems, e.g. bookshelf)
 )";
 
-double number(const std::string& flag, const std::string& v) {
-  char* end = nullptr;
-  const double x = std::strtod(v.c_str(), &end);
-  if (v.empty() || *end != '\0' || !std::isfinite(x) || x < 0) {
-    throw InvalidArgument(flag + ": expected a number >= 0, got '" + v + "'");
-  }
-  return x;
-}
-
-std::vector<std::string> split(const std::string& v) {
-  std::vector<std::string> items;
-  std::stringstream ss(v);
-  std::string item;
-  while (std::getline(ss, item, ',')) {
-    if (!item.empty()) items.push_back(item);
-  }
-  return items;
-}
-
 int run(int argc, char** argv) {
-  std::string scenes_dir = "robots/scenes", out_dir = "tradeoff-results";
+  std::string scenes_dir = "robots/scenes";
   std::vector<std::string> only;
-  TradeStudyOptions base;
-  base.move_tree_states = 2000;
-  base.planners = {{"RRTConnect", 5.0}, {"RRTstar", 1.0}};
-  auto onOff = [](const std::string& flag, const std::string& v) {
-    if (v != "on" && v != "off") throw InvalidArgument(flag + ": expected on or off");
-    return v == "on";
-  };
+  tools::StudyCommandOptions parsed;
+  parsed.out_dir = "tradeoff-results";
+  parsed.study.move_tree_states = 2000;
+  parsed.study.planners = {{"RRTConnect", 5.0}, {"RRTstar", 1.0}};
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     auto value = [&]() -> std::string {
@@ -84,44 +52,18 @@ int run(int argc, char** argv) {
     if (arg == "--scenes") {
       scenes_dir = value();
     } else if (arg == "--only") {
-      only = split(value());
-    } else if (arg == "--out-dir") {
-      out_dir = value();
-    } else if (arg == "--states") {
-      base.states = static_cast<std::size_t>(number(arg, value()));
-    } else if (arg == "--move-tree-states") {
-      base.move_tree_states = static_cast<std::size_t>(number(arg, value()));
-    } else if (arg == "--runs") {
-      base.runs = static_cast<unsigned>(number(arg, value()));
-    } else if (arg == "--planners") {
-      base.planners.clear();
-      for (const std::string& p : split(value())) {
-        const auto colon = p.find(':');
-        base.planners.push_back({p.substr(0, colon), colon == std::string::npos
-                                                         ? 0.0
-                                                         : number(arg, p.substr(colon + 1))});
-      }
-    } else if (arg == "--link-ratio") {
-      const double r = number(arg, value());
-      if (!(r > 0 && r <= 1)) throw InvalidArgument("--link-ratio: must be in (0, 1]");
-      base.link_resolution_ratio = r;
-    } else if (arg == "--self-link-ratio") {
-      const double r = number(arg, value());
-      if (!(r > 0 && r <= 1)) throw InvalidArgument("--self-link-ratio: must be in (0, 1]");
-      base.self_link_resolution_ratio = r;
-    } else if (arg == "--self-pair-tables") {
-      base.overrides.self_pair_tables = onOff(arg, value());
-    } else if (arg == "--exact-primitives") {
-      base.overrides.exact_primitives = onOff(arg, value());
-    } else if (arg == "--no-fcl-octomap") {
-      base.fcl_octomap = false;
+      only = tools::parseList(arg, value());
     } else if (arg == "-h" || arg == "--help") {
       std::cout << kUsage;
+      tools::studyOptions().writeHelp(std::cout);
       return 0;
-    } else {
-      throw InvalidArgument("unknown option " + arg + "\n" + kUsage);
+    } else if (!tools::studyOptions().parse(arg, value, parsed)) {
+      throw InvalidArgument("unknown option " + arg + " (tradeoff_bench --help)");
     }
   }
+  tools::finishStudyOptions(parsed);
+  TradeStudyOptions& base = parsed.study;
+  const std::string& out_dir = parsed.out_dir;
   std::vector<std::string> scenes;
   for (const auto& entry : std::filesystem::directory_iterator(scenes_dir)) {
     if (entry.path().extension() != ".yaml") continue;
@@ -154,7 +96,7 @@ int run(int argc, char** argv) {
     writePlanCsv(result.planning, planning, header);
     header = false;
     writeMarkdown(result, markdown);
-    writeTargets(result, markdown);
+    writeTargets(result, tools::kTradeOffTargets, markdown);
     checks.flush();
     planning.flush();
     markdown.flush();

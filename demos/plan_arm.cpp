@@ -11,9 +11,9 @@
 
 #include <ompl/util/Console.h>
 
-#include "octomotion/planner/gltf_export.h"
 #include "octomotion/planner/ompl/octree_validity_checker.h"
 #include "octomotion/planner/ompl/planning_scene.h"
+#include "octomotion/tools/gltf_export.h"
 
 using namespace octomotion;
 
@@ -51,9 +51,10 @@ int main(int argc, char** argv) {
       std::cout << "no solution in " << scene.spec.problem.time << " s\n";
       return 1;
     }
-    std::cout << "== planned with " << scene.spec.problem.planner << " (" << scene.checker
-              << ") in " << result.seconds * 1e3 << " ms: " << result.path->getStateCount()
-              << " states, length " << result.path->length() << " rad\n";
+    std::cout << "== planned with " << scene.spec.problem.planner << " ("
+              << octomotion::checkerKindName(scene.checker) << ") in " << result.seconds * 1e3
+              << " ms: " << result.path->getStateCount() << " states, length "
+              << result.path->length() << " rad\n";
 
     // Re-check the path with FCL at ten times the density.
     ompl::geometric::PathGeometric dense(*result.path);

@@ -53,8 +53,9 @@ int main(int argc, char** argv) {
       std::cout << "no solution in " << scene.spec.problem.time << " s\n";
       return 1;
     }
-    std::cout << "== planned with " << scene.spec.problem.planner << " (" << scene.checker
-              << ", seed " << scene.spec.problem.seed.value_or(0) << ") in " << result.seconds * 1e3
+    std::cout << "== planned with " << scene.spec.problem.planner << " ("
+              << octomotion::checkerKindName(scene.checker) << ", seed "
+              << scene.spec.problem.seed.value_or(0) << ") in " << result.seconds * 1e3
               << " ms: " << result.path->getStateCount() << " states after simplification, length "
               << result.path->length() << "\n";
 

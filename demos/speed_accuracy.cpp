@@ -14,7 +14,8 @@
 
 #include <ompl/util/Console.h>
 
-#include "octomotion/planner/trade_study.h"
+#include "octomotion/tools/study_options.h"
+#include "octomotion/tools/trade_study.h"
 
 namespace {
 
@@ -49,7 +50,7 @@ int main(int argc, char** argv) {
     const TradeStudyResult result = runTradeStudy(options);
 
     writeMarkdown(result, std::cout);
-    writeTargets(result, std::cout);
+    writeTargets(result, tools::kTradeOffTargets, std::cout);
     {
       std::ofstream csv(out_dir / "checks.csv"), plan(out_dir / "planning.csv"),
           dat(out_dir / (result.scene + "_tradeoff.dat"));
@@ -60,23 +61,22 @@ int main(int argc, char** argv) {
 
     // Its own checks.
     const CheckRow& fcl = result.checks.front();
-    expect(fcl.checker == "fcl" && fcl.false_positives + fcl.false_negatives == 0,
-           "FCL is the reference");
+    expect(fcl.checker == CheckerKind::kFcl, "FCL is the reference");
     expect(fcl.colliding_states > 0 && fcl.free_states > 0, "both free and colliding states");
     double coarsest_fp = -1, finest_fp = -1;
     for (const CheckRow& r : result.checks) {
-      if (r.rounding == "conservative" || r.checker == "fcl-octomap") {
-        expect(r.false_negatives == 0, r.checker + " " + r.rounding + " at " +
+      if (r.rounding == "conservative" || r.checker == CheckerKind::kFclOctomap) {
+        expect(r.false_negatives == 0, settingName(r.checker, r.resolution, r.rounding) + " at " +
                                            std::to_string(r.resolution) +
                                            " m missed a contact (conservative FN must be 0)");
       }
-      if (r.checker == "octree-fused" && r.rounding == "conservative") {
+      if (r.checker == CheckerKind::kOctreeFused && r.rounding == "conservative") {
         if (r.resolution == 0.04) coarsest_fp = r.fp_rate;
         if (r.resolution == 0.01) finest_fp = r.fp_rate;
       }
       for (const CheckRow& b : result.checks) {
-        if (r.checker == "octree" && b.checker == "octree-fused" && r.resolution == b.resolution &&
-            r.rounding == b.rounding) {
+        if (r.checker == CheckerKind::kOctree && b.checker == CheckerKind::kOctreeFused &&
+            r.resolution == b.resolution && r.rounding == b.rounding) {
           expect(r.false_positives == b.false_positives && r.false_negatives == b.false_negatives,
                  "the checker paths disagree at " + std::to_string(r.resolution) + " m");
         }

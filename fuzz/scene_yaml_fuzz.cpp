@@ -12,7 +12,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   try {
     const octomotion::SceneSpec spec = octomotion::parseSceneYaml(text, "/fuzz/scene.yaml");
     // What was accepted is usable: the checker name is one of the known ones.
-    octomotion::checkerName(spec.octree.checker);
+    octomotion::checkerKindName(spec.octree.checker);
   } catch (const octomotion::Error&) {
   }
   return 0;

@@ -1,4 +1,4 @@
-// octomotion's viewer: shows a .glb from `octomotion view` (planner/src/gltf_export.cpp):
+// octomotion's viewer: shows a .glb from `octomotion view` (tools/src/gltf_export.cpp):
 // the environment voxels, each link's moved voxel tree, the robot, and the path animation
 // ("path": state i at time i s) stepped with a slider or played.
 // window.octomotionViewer exposes the state for scripts and the end-to-end test.

@@ -1,6 +1,6 @@
 // The glTF export (gltf_export.h): written with assimp's glb2 exporter, checked by reading the
 // file back with assimp's importer and by parsing the glTF JSON chunk ourselves.
-#include "octomotion/planner/gltf_export.h"
+#include "octomotion/tools/gltf_export.h"
 
 #include <gtest/gtest.h>
 

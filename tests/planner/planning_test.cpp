@@ -19,7 +19,7 @@ namespace {
 
 struct Case {
   const char* scene;
-  const char* checker;
+  CheckerKind checker;
 };
 
 class Planning : public ::testing::TestWithParam<Case> {};
@@ -34,7 +34,7 @@ TEST_P(Planning, SolvesAndFclFindsThePathFree) {
       std::string(OCTOMOTION_SOURCE_DIR) + "/robots/scenes/" + GetParam().scene, overrides);
   EXPECT_EQ(scene.checker, GetParam().checker);
   const PlanResult result = plan(scene);
-  ASSERT_TRUE(result.solved) << GetParam().scene << " with " << GetParam().checker;
+  ASSERT_TRUE(result.solved) << GetParam().scene << " with " << checkerKindName(GetParam().checker);
   ASSERT_TRUE(result.path);
 
   // The planner's own checker accepts every state of the path.
@@ -62,13 +62,13 @@ TEST_P(Planning, SolvesAndFclFindsThePathFree) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, Planning,
-                         ::testing::Values(Case{"narrow_passage.yaml", "octree-fused"},
-                                           Case{"narrow_passage.yaml", "octree"},
-                                           Case{"bookshelf.yaml", "octree-fused"},
-                                           Case{"bookshelf.yaml", "octree"}),
+                         ::testing::Values(Case{"narrow_passage.yaml", CheckerKind::kOctreeFused},
+                                           Case{"narrow_passage.yaml", CheckerKind::kOctree},
+                                           Case{"bookshelf.yaml", CheckerKind::kOctreeFused},
+                                           Case{"bookshelf.yaml", CheckerKind::kOctree}),
                          [](const auto& param_info) {
-                           std::string name =
-                               std::string(param_info.param.scene) + "_" + param_info.param.checker;
+                           std::string name = std::string(param_info.param.scene) + "_" +
+                                              checkerKindName(param_info.param.checker);
                            for (char& c : name) {
                              if (!isalnum(static_cast<unsigned char>(c))) c = '_';
                            }

@@ -77,7 +77,7 @@ TEST(Scene, ParsesEveryField) {
   EXPECT_TRUE(s.octree.self_pair_tables);
   EXPECT_TRUE(s.octree.exact_primitives);
   EXPECT_EQ(s.octree.rounding, Rounding::kCenter);
-  EXPECT_EQ(s.octree.checker, "octree");
+  EXPECT_EQ(s.octree.checker, CheckerKind::kOctree);
   ASSERT_TRUE(s.problem.start && s.problem.goal);
   EXPECT_EQ(s.problem.start->joints.size(), 8u);
   EXPECT_DOUBLE_EQ(s.problem.goal->joints[5], 1.2);
@@ -100,7 +100,7 @@ problem:
   EXPECT_TRUE(s.robot.keep_mesh_root_transform);
   EXPECT_FALSE(s.octree.resolution.has_value());  // auto
   EXPECT_EQ(s.octree.rounding, Rounding::kConservative);
-  EXPECT_EQ(s.octree.checker, "octree-fused");
+  EXPECT_EQ(s.octree.checker, CheckerKind::kOctreeFused);
   ASSERT_TRUE(s.problem.start->pose.has_value());
   EXPECT_TRUE(s.problem.goal->pose->translation().isApprox(Eigen::Vector3d(1, 0, 1)));
   ASSERT_TRUE(s.problem.bounds.has_value());
@@ -237,8 +237,9 @@ TEST(Scene, RpyFollowsUrdf) {
                                     Eigen::AngleAxisd(0.1, Eigen::Vector3d::UnitX()))
                                        .toRotationMatrix();
   EXPECT_TRUE(R.isApprox(expected));
-  EXPECT_STREQ(checkerName("fcl-octomap"), "fcl-octomap");
-  EXPECT_THROW(checkerName("FCL"), InvalidArgument);
+  for (CheckerKind kind : kCheckerKinds) EXPECT_EQ(parseCheckerKind(checkerKindName(kind)), kind);
+  EXPECT_STREQ(checkerKindName(CheckerKind::kFclOctomap), "fcl-octomap");
+  EXPECT_THROW(parseCheckerKind("FCL"), InvalidArgument);
 }
 
 }  // namespace

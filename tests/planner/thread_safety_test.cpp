@@ -11,7 +11,7 @@
 namespace octomotion {
 namespace {
 
-void checkConcurrently(const char* scene_file, const char* checker, bool exact_primitives = false) {
+void checkConcurrently(const char* scene_file, CheckerKind checker, bool exact_primitives = false) {
   ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
   SceneOverrides overrides;
   overrides.checker = checker;
@@ -51,19 +51,19 @@ void checkConcurrently(const char* scene_file, const char* checker, bool exact_p
 }
 
 TEST(ThreadSafety, ArmFused) {
-  checkConcurrently("bookshelf.yaml", "octree-fused");
+  checkConcurrently("bookshelf.yaml", CheckerKind::kOctreeFused);
 }
 TEST(ThreadSafety, ArmMoveTree) {
-  checkConcurrently("bookshelf.yaml", "octree");
+  checkConcurrently("bookshelf.yaml", CheckerKind::kOctree);
 }
 TEST(ThreadSafety, RigidFused) {
-  checkConcurrently("narrow_passage.yaml", "octree-fused");
+  checkConcurrently("narrow_passage.yaml", CheckerKind::kOctreeFused);
 }
 TEST(ThreadSafety, ArmFusedExactPrimitives) {
-  checkConcurrently("cage.yaml", "octree-fused", true);
+  checkConcurrently("cage.yaml", CheckerKind::kOctreeFused, true);
 }
 TEST(ThreadSafety, ArmFcl) {
-  checkConcurrently("bookshelf.yaml", "fcl");
+  checkConcurrently("bookshelf.yaml", CheckerKind::kFcl);
 }
 
 }  // namespace

@@ -29,7 +29,7 @@ namespace og = ompl::geometric;
 PlanningScene load(const char* scene_file, std::uint64_t seed) {
   ompl::msg::setLogLevel(ompl::msg::LOG_ERROR);
   SceneOverrides overrides;
-  overrides.checker = "octree-fused";
+  overrides.checker = CheckerKind::kOctreeFused;
   overrides.seed = seed;
   PlanningScene scene = loadPlanningScene(
       std::string(OCTOMOTION_SOURCE_DIR) + "/robots/scenes/" + scene_file, overrides);

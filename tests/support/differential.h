@@ -364,7 +364,7 @@ inline Case makeCase(std::mt19937_64& rng, const DifferentialOptions& options, s
   c.overrides.link_resolution = resolution * link_ratio;
   if (arm && unit(rng) < 0.4) c.overrides.self_link_resolution = resolution * link_ratio;
   c.overrides.rounding = centre_rounding ? Rounding::kCenter : Rounding::kConservative;
-  c.overrides.checker = fused ? "octree-fused" : "octree";
+  c.overrides.checker = fused ? CheckerKind::kOctreeFused : CheckerKind::kOctree;
   c.overrides.exact_primitives = exact;
   // Self-pair tables where they are cheap to build (octo7: one small table, in well under a
   // second), conservative rounding only.
@@ -384,7 +384,7 @@ inline Case makeCase(std::mt19937_64& rng, const DifferentialOptions& options, s
 
 inline std::string pathName(const Case& c, bool exact_applied) {
   std::string name = *c.overrides.rounding == Rounding::kCenter ? "center" : "conservative";
-  name += *c.overrides.checker == "octree" ? " moveTree" : " fused";
+  name += *c.overrides.checker == CheckerKind::kOctree ? " moveTree" : " fused";
   if (exact_applied) name += " exact-primitives";
   if (c.overrides.self_pair_tables.value_or(false)) name += " self-pair-tables";
   return name;
@@ -540,7 +540,7 @@ inline DifferentialReport runDifferential(const DifferentialOptions& options) {
         kTieSlack * std::max(1.0, r.environment);
     const double delta_self =
         (centre ? centre_self : 2 * s3 * r.self_link) + kTieSlack * std::max(1.0, r.environment);
-    const CheckerPath path = checkerPathFromName(*c.overrides.checker);
+    const CheckerPath path = octreeCheckerPath(*c.overrides.checker);
     PathTally& tally = report.paths[pathName(c, exact_applied)];
     ++tally.cases;
     ++report.cases;

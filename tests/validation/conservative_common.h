@@ -27,9 +27,8 @@ struct ConservativeCounts {
 };
 
 // Checks states [begin, end) of the scene's kStates uniform states (kSeed) with one checker path.
-inline ConservativeCounts checkConservative(const std::string& scene_file,
-                                            const std::string& checker, std::size_t begin,
-                                            std::size_t end,
+inline ConservativeCounts checkConservative(const std::string& scene_file, CheckerKind checker,
+                                            std::size_t begin, std::size_t end,
                                             std::optional<double> self_link_resolution = {},
                                             bool exact_primitives = false) {
   const PlanningScene scene = loadValidationScene(scene_file, Rounding::kConservative, checker,
@@ -43,7 +42,7 @@ inline ConservativeCounts checkConservative(const std::string& scene_file,
   const OctreeCollisionModel& octree = *scene.model;
   const std::shared_ptr<const FclCollisionModel> reference = exactReference(scene);
   const FclCollisionModel& fcl = *reference;
-  const CheckerPath path = checkerPathFromName(checker);
+  const CheckerPath path = octreeCheckerPath(checker);
   const Resolutions r = resolutionsOf(octree);
   // docs/validation.md §2: a voxel of each tree lies between the two surfaces.
   const double delta_env =
@@ -98,7 +97,7 @@ inline ConservativeCounts checkConservative(const std::string& scene_file,
       }
     }
   }
-  std::cout << "[ rates    ] " << sceneLabel(scene_file) << " " << checker
+  std::cout << "[ rates    ] " << sceneLabel(scene_file) << " " << checkerKindName(checker)
             << (exact_primitives ? " exact-primitives" : "") << " states " << begin << ".." << end
             << " r_e " << r.environment << " r_l " << r.link << " r_s " << r.self_link
             << ": FCL env " << fcl_env << " self " << fcl_self << ", octree env " << octree_env
@@ -119,7 +118,7 @@ inline ConservativeCounts checkConservative(const std::string& scene_file,
 // moveTree path materialises a tree per link and pair), shard `shard` of them here. (A scene
 // planned through the moveTree path keeps its link trees at the environment's voxel,
 // loadPlanningScene; the fused path's test checks the default link trees, 1/4 of it.)
-inline void checkConservativeShard(const std::string& scene_file, const std::string& checker,
+inline void checkConservativeShard(const std::string& scene_file, CheckerKind checker,
                                    std::size_t shard, std::size_t shards) {
   checkConservative(scene_file, checker, kStates * shard / shards, kStates * (shard + 1) / shards);
 }

@@ -9,7 +9,7 @@ namespace {
 class ConservativeFused : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(ConservativeFused, NeverMissesAndEatsFreeSpaceByTheMarginOnly) {
-  checkConservative(GetParam(), "octree-fused", 0, kStates);
+  checkConservative(GetParam(), CheckerKind::kOctreeFused, 0, kStates);
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, ConservativeFused, ::testing::ValuesIn(sceneFiles()),
@@ -20,7 +20,7 @@ INSTANTIATE_TEST_SUITE_P(Scenes, ConservativeFused, ::testing::ValuesIn(sceneFil
 class ConservativeFusedFinerSelfTrees : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(ConservativeFusedFinerSelfTrees, NeverMissesAndEatsFreeSpaceByTheMarginOnly) {
-  checkConservative(GetParam(), "octree-fused", 0, kStates, 0.005);
+  checkConservative(GetParam(), CheckerKind::kOctreeFused, 0, kStates, 0.005);
 }
 
 INSTANTIATE_TEST_SUITE_P(
@@ -37,9 +37,10 @@ INSTANTIATE_TEST_SUITE_P(
 class ConservativeFusedExactPrimitives : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(ConservativeFusedExactPrimitives, NeverMissesAndEatsFreeSpaceByTheLinkMarginOnly) {
-  const ConservativeCounts voxels = checkConservative(GetParam(), "octree-fused", 0, kStates);
+  const ConservativeCounts voxels =
+      checkConservative(GetParam(), CheckerKind::kOctreeFused, 0, kStates);
   const ConservativeCounts exact =
-      checkConservative(GetParam(), "octree-fused", 0, kStates, {}, true);
+      checkConservative(GetParam(), CheckerKind::kOctreeFused, 0, kStates, {}, true);
   EXPECT_EQ(exact.fcl_env, voxels.fcl_env);
   EXPECT_LE(exact.extra_env, voxels.extra_env);
   // Where the voxels' margin rejects more than a handful of free states, it must show.

@@ -10,7 +10,7 @@ namespace {
 class ConservativeMoveTree0 : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(ConservativeMoveTree0, NeverMissesAndEatsFreeSpaceByTheMarginOnly) {
-  checkConservativeShard(GetParam(), "octree", 0, 3);
+  checkConservativeShard(GetParam(), CheckerKind::kOctree, 0, 3);
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, ConservativeMoveTree0, ::testing::ValuesIn(sceneFiles()),

@@ -10,7 +10,7 @@ namespace {
 class ConservativeMoveTree1 : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(ConservativeMoveTree1, NeverMissesAndEatsFreeSpaceByTheMarginOnly) {
-  checkConservativeShard(GetParam(), "octree", 1, 3);
+  checkConservativeShard(GetParam(), CheckerKind::kOctree, 1, 3);
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, ConservativeMoveTree1, ::testing::ValuesIn(sceneFiles()),

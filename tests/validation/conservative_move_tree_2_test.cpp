@@ -10,7 +10,7 @@ namespace {
 class ConservativeMoveTree2 : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(ConservativeMoveTree2, NeverMissesAndEatsFreeSpaceByTheMarginOnly) {
-  checkConservativeShard(GetParam(), "octree", 2, 3);
+  checkConservativeShard(GetParam(), CheckerKind::kOctree, 2, 3);
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, ConservativeMoveTree2, ::testing::ValuesIn(sceneFiles()),

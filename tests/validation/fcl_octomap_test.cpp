@@ -17,10 +17,10 @@ constexpr std::uint64_t kSeed = 0x5eed0003;
 TEST(FclOctomap, IsSelectableAndChecksStates) {
   ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
   SceneOverrides overrides;
-  overrides.checker = "fcl-octomap";
+  overrides.checker = CheckerKind::kFclOctomap;
   PlanningScene scene = loadPlanningScene(
       std::string(OCTOMOTION_SOURCE_DIR) + "/robots/scenes/bookshelf.yaml", overrides);
-  EXPECT_EQ(scene.checker, "fcl-octomap");
+  EXPECT_EQ(scene.checker, CheckerKind::kFclOctomap);
   EXPECT_TRUE(scene.fcl_octomap_model.built());
   EXPECT_FALSE(scene.fcl_model.built()) << "the exact reference is built on demand only";
   const auto& si = scene.setup->getSpaceInformation();
@@ -64,7 +64,7 @@ TEST(FclOctomap, SceneFileSelectsIt) {
                          "octree: {resolution: 0.02, checker: fcl-octomap}\n"
                          "problem: {bounds: {min: [-1, -1, 0], max: [1, 1, 1]}}\n";
   const PlanningScene scene = loadPlanningScene(path);
-  EXPECT_EQ(scene.checker, "fcl-octomap");
+  EXPECT_EQ(scene.checker, CheckerKind::kFclOctomap);
   EXPECT_NE(dynamic_cast<const FclOctomapValidityChecker*>(
                 scene.setup->getSpaceInformation()->getStateValidityChecker().get()),
             nullptr);

@@ -102,11 +102,11 @@ INSTANTIATE_TEST_SUITE_P(Scenes, GeometryCoverage, ::testing::ValuesIn(allScenes
 class ColladaScenes : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(ColladaScenes, FusedNeverMissesAContact) {
-  checkConservative(GetParam(), "octree-fused", 0, 3000);
+  checkConservative(GetParam(), CheckerKind::kOctreeFused, 0, 3000);
 }
 
 TEST_P(ColladaScenes, MoveTreeNeverMissesAContact) {
-  checkConservative(GetParam(), "octree", 0, 1500);
+  checkConservative(GetParam(), CheckerKind::kOctree, 0, 1500);
 }
 
 INSTANTIATE_TEST_SUITE_P(Generated, ColladaScenes, ::testing::ValuesIn(test::colladaSceneFiles()),

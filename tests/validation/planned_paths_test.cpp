@@ -31,7 +31,7 @@ TEST_P(PlannedPaths, AreFreeForFclAtTenTimesTheDensity) {
   if (!loadScene(GetParam().scene).problem.start) GTEST_SKIP() << "the scene has no problem";
   SceneOverrides overrides;
   overrides.rounding = Rounding::kConservative;
-  overrides.checker = "octree-fused";
+  overrides.checker = CheckerKind::kOctreeFused;
   overrides.planner = "RRTConnect";
   overrides.seed = GetParam().seed;
   overrides.time = 60;  // a cap for sanitizer builds; RRTConnect stops when it solves

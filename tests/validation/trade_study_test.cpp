@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "octomotion/error.h"
-#include "octomotion/planner/trade_study.h"
+#include "octomotion/tools/trade_study.h"
 
 namespace octomotion {
 namespace {
@@ -60,7 +60,7 @@ TEST(TradeStudyTest, PercentileIsNearestRank) {
 TEST(TradeStudyTest, CsvRowsHaveTheHeadersColumns) {
   CheckRow check;
   check.scene = "s";
-  check.checker = "octree-fused";
+  check.checker = CheckerKind::kOctreeFused;
   check.resolution = 0.01;
   check.rounding = "conservative";
   std::ostringstream out;
@@ -79,7 +79,7 @@ TEST(TradeStudyTest, CsvRowsHaveTheHeadersColumns) {
   PlanRow plan;
   plan.scene = "s";
   plan.planner = "RRTConnect";
-  plan.checker = "fcl";
+  plan.checker = CheckerKind::kFcl;
   std::ostringstream pout;
   writePlanCsv({plan}, pout);
   std::istringstream pin(pout.str());
@@ -101,52 +101,98 @@ TEST(TradeStudyTest, DefaultResolutionsGoFromCoarseToFine) {
   EXPECT_TRUE(std::is_sorted(body.rbegin(), body.rend()));
 }
 
-// A small real study: the conservative octree and FCL+OctoMap (conservative voxels too) never
-// say free where FCL finds a contact; FCL against itself is exact.
+// A small real study, every row's answers scored here against FCL's on the same states: the
+// conservative octree and FCL+OctoMap (conservative voxels too) never say free where FCL finds a
+// contact, while center rounding does miss some (so the scoring can see a miss), and the study's
+// own counts agree.
 TEST(TradeStudyTest, ConservativeSettingsHaveNoFalseNegatives) {
   TradeStudyOptions options;
   options.scene_path = std::string(OCTOMOTION_SOURCE_DIR) + "/robots/scenes/narrow_passage.yaml";
   options.states = 300;
   options.resolutions = {0.05, 0.02};
   options.runs = 0;
+  options.keep_answers = true;
   const TradeStudyResult result = runTradeStudy(options);
   EXPECT_TRUE(result.free_flying);
   EXPECT_TRUE(result.planning.empty());
   // fcl + per resolution: fcl-octomap + 2 roundings x 2 paths.
   ASSERT_EQ(result.checks.size(), 1u + 2u * 5u);
   const CheckRow& fcl = result.checks.front();
-  EXPECT_EQ(fcl.checker, "fcl");
-  EXPECT_EQ(fcl.false_positives + fcl.false_negatives, 0u);
-  EXPECT_GT(fcl.colliding_states, 0u);
-  EXPECT_GT(fcl.free_states, 0u);
+  ASSERT_EQ(fcl.checker, CheckerKind::kFcl);
+  ASSERT_EQ(fcl.answers.size(), 300u);
+  const auto fcl_colliding =
+      static_cast<std::size_t>(std::count(fcl.answers.begin(), fcl.answers.end(), true));
+  EXPECT_GT(fcl_colliding, 0u);
+  EXPECT_LT(fcl_colliding, fcl.answers.size());
+  std::size_t center_misses = 0;
   for (const CheckRow& r : result.checks) {
-    EXPECT_EQ(r.states, 300u);
-    EXPECT_EQ(r.free_states + r.colliding_states, r.states);
-    if (r.rounding == "conservative" || r.checker == "fcl-octomap") {
-      EXPECT_EQ(r.false_negatives, 0u) << r.checker << " " << r.resolution;
+    const std::string setting = std::string(checkerKindName(r.checker)) + " " +
+                                std::to_string(r.resolution) + " " + r.rounding;
+    SCOPED_TRACE(setting);
+    ASSERT_EQ(r.answers.size(), fcl.answers.size());
+    std::size_t false_negatives = 0, false_positives = 0;
+    for (std::size_t i = 0; i < r.answers.size(); ++i) {
+      false_negatives += fcl.answers[i] && !r.answers[i] ? 1 : 0;
+      false_positives += !fcl.answers[i] && r.answers[i] ? 1 : 0;
     }
-    if (r.checker.rfind("octree", 0) == 0) {
+    EXPECT_EQ(r.colliding_states, fcl_colliding);
+    EXPECT_EQ(r.false_negatives, false_negatives);
+    EXPECT_EQ(r.false_positives, false_positives);
+    if (r.rounding == "conservative" || r.checker == CheckerKind::kFclOctomap) {
+      EXPECT_EQ(false_negatives, 0u);
+    } else if (r.rounding == "center") {
+      center_misses += false_negatives;
+    }
+    if (isOctreeChecker(r.checker)) {
       EXPECT_GT(r.memory_bytes, 0u);
       // Paired with FCL+OctoMap's environment-only passes at the same resolution.
-      EXPECT_GT(r.env_speedup_vs_fcl_octomap, 0.0) << r.checker << " " << r.resolution;
+      EXPECT_GT(r.env_speedup_vs_fcl_octomap, 0.0);
       EXPECT_GT(r.env_mean_us, 0.0);
     }
   }
+  EXPECT_GT(center_misses, 0u);
   // Both paths answer identically for the same model.
   for (const CheckRow& a : result.checks) {
     for (const CheckRow& b : result.checks) {
-      if (a.checker == "octree" && b.checker == "octree-fused" && a.resolution == b.resolution &&
-          a.rounding == b.rounding) {
-        EXPECT_EQ(a.false_positives, b.false_positives);
-        EXPECT_EQ(a.false_negatives, b.false_negatives);
+      if (a.checker == CheckerKind::kOctree && b.checker == CheckerKind::kOctreeFused &&
+          a.resolution == b.resolution && a.rounding == b.rounding) {
+        EXPECT_EQ(a.answers, b.answers);
       }
     }
   }
   std::ostringstream md;
   writeMarkdown(result, md);
-  writeTargets(result, md);
   EXPECT_NE(md.str().find("| fcl | exact |"), std::string::npos);
-  EXPECT_NE(md.str().find("Targets for narrow_passage"), std::string::npos);
+}
+
+// The targets are the caller's: the report names them and the verdicts follow them.
+TEST(TradeStudyTest, TargetsAreTheCallers) {
+  TradeStudyResult result;
+  result.scene = "s";
+  CheckRow fcl;
+  fcl.checker = CheckerKind::kFcl;
+  fcl.states = 100;
+  fcl.mean_us = 10;
+  CheckRow octree;
+  octree.checker = CheckerKind::kOctreeFused;
+  octree.resolution = 0.02;
+  octree.rounding = "conservative";
+  octree.states = 100;
+  octree.mean_us = 1;
+  octree.speedup_vs_fcl = 10;
+  octree.env_speedup_vs_fcl_octomap = 4;
+  result.checks = {fcl, octree};
+  const StudyTargets easy = {0.02, 5.0, 2.0, 3.0, 10.0, 3.0, 100};
+  std::ostringstream met;
+  writeTargets(result, easy, met);
+  EXPECT_NE(met.str().find("Targets for s"), std::string::npos);
+  EXPECT_NE(met.str().find("target >= 5: **met**"), std::string::npos) << met.str();
+  EXPECT_NE(met.str().find("target >= 2: **met**"), std::string::npos) << met.str();
+  StudyTargets hard = easy;
+  hard.full_speedup = 20;
+  std::ostringstream missed;
+  writeTargets(result, hard, missed);
+  EXPECT_NE(missed.str().find("target >= 20: **missed**"), std::string::npos) << missed.str();
 }
 
 // A small arm study: bookshelf, 400 states, the fused conservative octree at 2 cm against FCL.
@@ -156,7 +202,7 @@ TradeStudyOptions bookshelfFusedConservative() {
   options.states = 400;
   options.resolutions = {0.02};
   options.roundings = {Rounding::kConservative};
-  options.paths = {CheckerPath::kFused};
+  options.octree_checkers = {CheckerKind::kOctreeFused};
   options.fcl_octomap = false;
   options.runs = 0;
   return options;
@@ -220,7 +266,7 @@ TEST(TradeStudyTest, PlanningRecordsBenchmarksTimeAndThePlannersOwn) {
   const TradeStudyResult result = runTradeStudy(options);
   ASSERT_EQ(result.planning.size(), 2u);  // FCL and the fused conservative octree at 2 cm
   for (const PlanRow& r : result.planning) {
-    SCOPED_TRACE(r.checker);
+    SCOPED_TRACE(checkerKindName(r.checker));
     EXPECT_EQ(r.runs, 3u);
     EXPECT_EQ(r.solved, 3u);  // RRTConnect solves the bookshelf in milliseconds at 2 cm
     EXPECT_GT(r.median_solve_time, 0.0);

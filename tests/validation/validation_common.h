@@ -66,7 +66,7 @@ inline std::string testName(const std::string& path) {
 // Arms at 2 cm (fast to build, and coarse enough that the margins matter); rigid bodies at
 // their scene's resolution (auto when it has none), since they are small next to 2 cm.
 inline PlanningScene loadValidationScene(const std::string& path, Rounding rounding,
-                                         const std::string& checker = "octree-fused",
+                                         CheckerKind checker = CheckerKind::kOctreeFused,
                                          std::optional<double> self_link_resolution = {},
                                          bool exact_primitives = false) {
   ompl::msg::setLogLevel(ompl::msg::LOG_WARN);

@@ -215,13 +215,6 @@ std::uint64_t nextModelId() {
   return next.fetch_add(1);
 }
 
-CheckerPath checkerPathFromName(const std::string& name) {
-  if (name == "octree") return CheckerPath::kMoveTree;
-  if (name == "octree-fused") return CheckerPath::kFused;
-  throw InvalidArgument("octree checker path: expected 'octree' or 'octree-fused', got '" + name +
-                        "'");
-}
-
 OctreeCollisionModel::OctreeCollisionModel(RobotModel robot, const EnvironmentGeometry& environment,
                                            const CollisionModelOptions& options)
     : id_(nextModelId()),

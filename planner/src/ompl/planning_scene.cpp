@@ -157,15 +157,29 @@ void boundMotionStep(ompl::base::SpaceInformation& si, const RobotModel& robot, 
   }
 }
 
-PlanningScene loadPlanningScene(const std::string& scene_path, const SceneOverrides& overrides,
-                                const WarningSink& warnings) {
-  PlanningScene scene;
-  SceneSpec& spec = scene.spec;
+CheckerPath octreeCheckerPath(CheckerKind kind) {
+  switch (kind) {
+    case CheckerKind::kOctree:
+      return CheckerPath::kMoveTree;
+    case CheckerKind::kOctreeFused:
+      return CheckerPath::kFused;
+    case CheckerKind::kFcl:
+    case CheckerKind::kFclOctomap:
+      break;
+  }
+  throw InvalidArgument(std::string("checker ") + checkerKindName(kind) +
+                        ": not an octree checker (expected octree or octree-fused)");
+}
+
+SceneInputs loadSceneInputs(const std::string& scene_path, const SceneOverrides& overrides,
+                            const WarningSink& warnings) {
+  SceneInputs inputs;
+  SceneSpec& spec = inputs.spec;
   spec = loadScene(scene_path);
   if (overrides.auto_resolution) spec.octree.resolution.reset();
   if (overrides.resolution) spec.octree.resolution = *overrides.resolution;
   if (overrides.rounding) spec.octree.rounding = *overrides.rounding;
-  if (overrides.checker) spec.octree.checker = checkerName(*overrides.checker);
+  if (overrides.checker) spec.octree.checker = *overrides.checker;
   if (overrides.planner) spec.problem.planner = *overrides.planner;
   if (overrides.time) spec.problem.time = *overrides.time;
   if (overrides.seed) spec.problem.seed = *overrides.seed;
@@ -176,12 +190,10 @@ PlanningScene loadPlanningScene(const std::string& scene_path, const SceneOverri
   }
   if (overrides.self_pair_tables) spec.octree.self_pair_tables = *overrides.self_pair_tables;
   if (overrides.exact_primitives) spec.octree.exact_primitives = *overrides.exact_primitives;
-  // Seed before OMPL creates any random number generator.
-  if (spec.problem.seed) ompl::RNG::setSeed(*spec.problem.seed);
 
   // The robot.
-  std::optional<RobotModel> robot;
-  double robot_diagonal = 0;
+  std::optional<RobotModel>& robot = inputs.robot;
+  double& robot_diagonal = inputs.robot_diagonal;
   if (!spec.robot.urdf.empty()) {
     RobotModelOptions options;
     options.package_paths = spec.robot.package_paths;
@@ -213,7 +225,7 @@ PlanningScene loadPlanningScene(const std::string& scene_path, const SceneOverri
 
   // The environment, and the region the problem lives in.
   // Errors in the files a scene names also name the scene.
-  scene.environment = [&] {
+  inputs.environment = [&] {
     try {
       return std::make_shared<const EnvironmentGeometry>(
           EnvironmentGeometry::load(spec.environment, warnings));
@@ -221,10 +233,10 @@ PlanningScene loadPlanningScene(const std::string& scene_path, const SceneOverri
       throw FileError(spec.path, e.what());
     }
   }();
-  const EnvironmentGeometry& environment = *scene.environment;
+  const EnvironmentGeometry& environment = *inputs.environment;
   Eigen::AlignedBox3d scene_box;
   if (const auto b = environment.bounds()) scene_box = *b;
-  const bool bounds_given = spec.problem.bounds.has_value();
+  inputs.bounds_given = spec.problem.bounds.has_value();
   if (robot->isFreeFlying() && !spec.problem.bounds) {
     // OMPL.app infers the bounds from the environment when a problem gives none.
     if (scene_box.isEmpty()) {
@@ -236,7 +248,8 @@ PlanningScene loadPlanningScene(const std::string& scene_path, const SceneOverri
   }
   if (spec.problem.bounds) scene_box.extend(*spec.problem.bounds);
   // How errors name the resolution's origin.
-  std::string resolution_field = overrides.resolution ? "--resolution" : "octree.resolution";
+  std::string& resolution_field = inputs.resolution_field;
+  resolution_field = overrides.resolution ? "--resolution" : "octree.resolution";
   if (!spec.octree.resolution) {
     spec.octree.resolution = autoResolution(*robot, scene_box, robot_diagonal);
     resolution_field += " auto";
@@ -249,6 +262,20 @@ PlanningScene loadPlanningScene(const std::string& scene_path, const SceneOverri
                           " m, not a voxel size; give the resolution in metres");
     }
   }
+  return inputs;
+}
+
+PlanningScene loadPlanningScene(const std::string& scene_path, const SceneOverrides& overrides,
+                                const WarningSink& warnings) {
+  SceneInputs inputs = loadSceneInputs(scene_path, overrides, warnings);
+  PlanningScene scene;
+  scene.spec = std::move(inputs.spec);
+  scene.environment = std::move(inputs.environment);
+  const SceneSpec& spec = scene.spec;
+  const EnvironmentGeometry& environment = *scene.environment;
+  std::optional<RobotModel>& robot = inputs.robot;
+  // Seed before OMPL creates any random number generator.
+  if (spec.problem.seed) ompl::RNG::setSeed(*spec.problem.seed);
 
   CollisionModelOptions options;
   options.resolution = *spec.octree.resolution;
@@ -257,7 +284,7 @@ PlanningScene loadPlanningScene(const std::string& scene_path, const SceneOverri
   // 4x finer (the library's default, made for the fused query, which descends only near
   // contacts) cost it several times over; it keeps the link trees at the voxel unless the scene
   // says.
-  if (!options.link_resolution && spec.octree.checker == "octree") {
+  if (!options.link_resolution && spec.octree.checker == CheckerKind::kOctree) {
     options.link_resolution = options.resolution;
   }
   options.self_link_resolution = spec.octree.self_link_resolution;
@@ -275,7 +302,7 @@ PlanningScene loadPlanningScene(const std::string& scene_path, const SceneOverri
         std::make_shared<const OctreeCollisionModel>(std::move(*robot), environment, options);
   } catch (const InvalidArgument& e) {
     // Most model errors depend on the resolution (depth, memory guard): say where it came from.
-    throw InvalidArgument(spec.path + ": at " + resolution_field + " " +
+    throw InvalidArgument(spec.path + ": at " + inputs.resolution_field + " " +
                           shortNumber(options.resolution) + " m: " + e.what());
   }
   // The references, lazily: they keep the octree model (for its robot) and the objects alive.
@@ -298,7 +325,7 @@ PlanningScene loadPlanningScene(const std::string& scene_path, const SceneOverri
 
   // OMPL. Its exceptions name no file: ours do.
   try {
-    setUpOmpl(scene, free_flying, robot_diagonal, options.resolution, bounds_given);
+    setUpOmpl(scene, free_flying, inputs.robot_diagonal, options.resolution, inputs.bounds_given);
   } catch (const ompl::Exception& e) {
     throw InvalidArgument(spec.path + ": OMPL refused the problem: " + e.what());
   } catch (const InvalidArgument& e) {
@@ -365,14 +392,14 @@ void setUpOmpl(PlanningScene& scene, bool free_flying, double robot_diagonal, do
       free_flying ? robot_diagonal : scene.model->report().reach_W.sizes().maxCoeff() / 2,
       resolution);
   scene.checker = spec.octree.checker;
-  if (scene.checker == "fcl") {
+  if (scene.checker == CheckerKind::kFcl) {
     scene.setup->setStateValidityChecker(std::make_shared<FclValidityChecker>(si, scene.fcl_model));
-  } else if (scene.checker == "fcl-octomap") {
+  } else if (scene.checker == CheckerKind::kFclOctomap) {
     scene.setup->setStateValidityChecker(
         std::make_shared<FclOctomapValidityChecker>(si, scene.fcl_octomap_model));
   } else {
-    scene.setup->setStateValidityChecker(std::make_shared<OctreeValidityChecker>(
-        si, scene.model, checkerPathFromName(scene.checker)));
+    scene.setup->setStateValidityChecker(
+        std::make_shared<OctreeValidityChecker>(si, scene.model, octreeCheckerPath(scene.checker)));
   }
   auto toState = [&](const StateSpec& s, const char* field) {
     ob::ScopedState<> state(si);

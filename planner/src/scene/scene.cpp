@@ -290,7 +290,7 @@ void parseOctree(const YamlReader& r, const YAML::Node& node, SceneSpec& scene) 
   if (node["checker"]) {
     const std::string v = r.string(node["checker"], "octree.checker");
     try {
-      s.checker = checkerName(v);
+      s.checker = parseCheckerKind(v);
     } catch (const InvalidArgument& e) {
       r.fail("octree.checker", node["checker"], e.what());
     }
@@ -341,9 +341,23 @@ std::string planningTimeTooLong(double seconds) {
   return s.str();
 }
 
-const char* checkerName(const std::string& name) {
-  for (const char* known : kCheckerNames) {
-    if (name == known) return known;
+const char* checkerKindName(CheckerKind kind) {
+  switch (kind) {
+    case CheckerKind::kOctree:
+      return "octree";
+    case CheckerKind::kOctreeFused:
+      return "octree-fused";
+    case CheckerKind::kFcl:
+      return "fcl";
+    case CheckerKind::kFclOctomap:
+      return "fcl-octomap";
+  }
+  return "?";
+}
+
+CheckerKind parseCheckerKind(const std::string& name) {
+  for (CheckerKind kind : kCheckerKinds) {
+    if (name == checkerKindName(kind)) return kind;
   }
   throw InvalidArgument("checker: expected octree, octree-fused, fcl or fcl-octomap, got '" + name +
                         "'");

@@ -37,7 +37,6 @@ struct TriangleMesh;
 // (a) the mission's path: moveTree from the source tree, then the parallel traversal;
 // (b) the fused query: both at once, without materialising the moved tree.
 enum class CheckerPath { kMoveTree, kFused };
-CheckerPath checkerPathFromName(const std::string& name);  // "octree" | "octree-fused"
 
 // How selfInCollision finds the link pairs worth a tree-vs-tree test:
 // kPairs: every checked (SRDF-enabled) pair, each with a bounding-sphere pre-test;

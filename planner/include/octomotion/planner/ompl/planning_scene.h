@@ -27,7 +27,7 @@ struct SceneOverrides {
   std::optional<double> resolution;  // metres; NaN-free, > 0
   bool auto_resolution = false;      // --resolution auto
   std::optional<Rounding> rounding;
-  std::optional<std::string> checker;
+  std::optional<CheckerKind> checker;
   std::optional<std::string> planner;
   std::optional<double> time;
   std::optional<std::uint64_t> seed;
@@ -94,8 +94,12 @@ struct PlanningScene {
   }
   std::shared_ptr<const EnvironmentGeometry> environment;  // the loaded objects
   ompl::geometric::SimpleSetupPtr setup;  // checker installed, start/goal set if the scene has them
-  std::string checker;                    // the checker in use
+  CheckerKind checker = CheckerKind::kOctreeFused;  // the checker in use
 };
+
+// The octree model's query for an octree checker kind (kOctree: moveTree, kOctreeFused: the
+// fused query); InvalidArgument for the FCL kinds.
+CheckerPath octreeCheckerPath(CheckerKind kind);
 
 // Sets the space's state-validity checking resolution (if OMPL's is coarser) so that no point of
 // the robot moves more than two voxels of `resolution` between the checked states of a motion.
@@ -104,6 +108,21 @@ struct PlanningScene {
 // and the trade study's planning both use it.
 void boundMotionStep(ompl::base::SpaceInformation& si, const RobotModel& robot, double reach,
                      double resolution);
+
+// What loadPlanningScene reads before it builds any model: the scene with the overrides applied
+// (octree.resolution resolved, auto included; problem.bounds set for free-flying bodies), the
+// robot and the environment. Callers that build their own models (the trade study) start here;
+// it leaves OMPL (and its seed) alone.
+struct SceneInputs {
+  SceneSpec spec;
+  std::optional<RobotModel> robot;
+  std::shared_ptr<const EnvironmentGeometry> environment;
+  double robot_diagonal = 0;     // free-flying bodies: their geometry's diagonal; arms: 0
+  bool bounds_given = false;     // the scene gave problem.bounds (else the environment's box)
+  std::string resolution_field;  // how errors name the resolution's origin
+};
+SceneInputs loadSceneInputs(const std::string& scene_path, const SceneOverrides& overrides = {},
+                            const WarningSink& warnings = {});
 
 // Throws octomotion::Error (naming the file and field) for anything wrong with the scene.
 PlanningScene loadPlanningScene(const std::string& scene_path, const SceneOverrides& overrides = {},

@@ -38,7 +38,18 @@ struct EnvironmentObject {
   Eigen::Isometry3d X_WO = Eigen::Isometry3d::Identity();
 };
 
-inline constexpr const char* kCheckerNames[] = {"octree", "octree-fused", "fcl", "fcl-octomap"};
+// The validity checker a scene plans with: the octree model's moveTree path or fused query, exact
+// FCL, or FCL on an OctoMap of the environment. Names ("octree", "octree-fused", "fcl",
+// "fcl-octomap") appear only where scenes and command lines are read and results are written.
+enum class CheckerKind { kOctree, kOctreeFused, kFcl, kFclOctomap };
+inline constexpr CheckerKind kCheckerKinds[] = {CheckerKind::kOctree, CheckerKind::kOctreeFused,
+                                                CheckerKind::kFcl, CheckerKind::kFclOctomap};
+const char* checkerKindName(CheckerKind kind);
+// The kind a name stands for, or InvalidArgument naming the known ones.
+CheckerKind parseCheckerKind(const std::string& name);
+inline bool isOctreeChecker(CheckerKind kind) {
+  return kind == CheckerKind::kOctree || kind == CheckerKind::kOctreeFused;
+}
 
 struct OctreeSettings {
   std::optional<double> resolution;       // metres; empty = auto (derived from the scene)
@@ -50,7 +61,7 @@ struct OctreeSettings {
   // Contacts confirmed against primitives' exact shapes (CollisionModelOptions::exact_primitives).
   bool exact_primitives = false;
   Rounding rounding = Rounding::kConservative;
-  std::string checker = "octree-fused";  // one of kCheckerNames
+  CheckerKind checker = CheckerKind::kOctreeFused;
   // Memory guard (CollisionModelOptions::max_surface_voxels); empty = the library default.
   std::optional<double> max_surface_voxels;
 };
@@ -91,7 +102,6 @@ inline constexpr double kMaxPlanningSeconds = 1e6;
 std::string planningTimeTooLong(double seconds);  // "... s is more than the limit of ..."
 // The largest seed accepted: every integer up to it is exact in a double.
 inline constexpr double kMaxSeed = 9.0e15;
-const char* checkerName(const std::string& name);  // validated, or throws InvalidArgument
 // URDF convention: fixed axes, roll about x, then pitch about y, then yaw about z.
 Eigen::Matrix3d rotationFromRpy(double roll, double pitch, double yaw);
 

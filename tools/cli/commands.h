@@ -7,17 +7,18 @@
 #include <vector>
 
 #include "octomotion/planner/ompl/planning_scene.h"
+#include "octomotion/tools/option_table.h"
 
 namespace octomotion::cli {
 
-// A finite number, or InvalidArgument naming the flag.
-double parseNumber(const std::string& flag, const std::string& value);
+using tools::parseNumber;  // a finite number, or InvalidArgument naming the flag
 
-// The scene options shared by every command (--resolution, --rounding, --checker, --planner,
-// --time, --seed, --package-path). Returns false when `arg` is not one of them; `value` returns
-// the option's value (and throws when it is missing).
-bool parseSceneOption(const std::string& arg, const std::function<std::string()>& value,
-                      SceneOverrides& overrides);
+// The scene options shared by every command (tools::sceneOptions()). Returns false when `arg` is
+// not one of them; `value` returns the option's value (and throws when it is missing).
+inline bool parseSceneOption(const std::string& arg, const std::function<std::string()>& value,
+                             SceneOverrides& overrides) {
+  return tools::sceneOptions().parse(arg, value, overrides);
+}
 
 // Loads a scene with warnings and the load time on stderr.
 // Flushes standard output and throws Error if anything written to it was lost (a full disk, a

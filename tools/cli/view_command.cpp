@@ -12,7 +12,7 @@
 
 #include "commands.h"
 #include "octomotion/error.h"
-#include "octomotion/planner/gltf_export.h"
+#include "octomotion/tools/gltf_export.h"
 
 namespace octomotion::cli {
 

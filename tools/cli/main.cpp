@@ -34,24 +34,12 @@ const char* kUsage = R"(usage:
   octomotion view SCENE [--path PATH] [view options] [options]   (octomotion view --help)
 SCENE is a YAML scene (docs/scenes.md) or an OMPL.app .cfg problem.
 options:
-  --resolution METRES|auto   voxel size of the environment (overrides the scene)
-  --rounding conservative|center
-  --checker octree|octree-fused|fcl|fcl-octomap
-  --package-path DIR         extra package:// search path (repeatable)
-  --max-surface-voxels N     fail early when a tree would need more voxels (default 2e8)
-  --link-resolution METRES   voxel size of the links' trees for the environment queries
-                             (default: the resolution / 4; docs/planner.md)
-  --self-link-resolution METRES
-                             link trees for self-collision pairs only (default: the
-                             --link-resolution if given, else the resolution; finer ones give
-                             fewer false positives of near self pairs; docs/trade-off.md)
-  --self-pair-tables on|off  joint-space tables for self pairs of 1-2 variables (default off;
-                             docs/planner.md, "Self-pair tables")
-  --exact-primitives on|off  test the links against the scene's boxes, balls and cylinders
-                             themselves, not their voxels (default off; docs/planner.md,
-                             "Exact primitives")
-  --interpolation METRES     plan: spacing of the written path's states (default: OMPL's)
-  --verbose                  OMPL's log messages on stderr
+)";
+
+// After the scene options (tools::sceneOptions()).
+const char* kUsageTail =
+    R"(  --interpolation METRES   plan: spacing of the written path's states (default: OMPL's)
+  --verbose                OMPL's log messages on stderr
 )";
 
 struct Args {
@@ -83,6 +71,8 @@ Args parseArgs(int argc, char** argv) {
       a.verbose = true;
     } else if (arg == "-h" || arg == "--help") {
       std::cout << kUsage;
+      tools::sceneOptions().writeHelp(std::cout);
+      std::cout << kUsageTail;
       std::exit(0);
     } else if (!arg.empty() && arg[0] == '-') {
       throw InvalidArgument("unknown option " + arg);
@@ -120,9 +110,9 @@ void requireFreeStartAndGoal(const PlanningScene& scene) {
     if (checker.isValid(state)) continue;
     std::ostringstream what;
     what << (cfg ? "[problem] " + std::string(which) + ".*" : "problem." + std::string(which))
-         << " is in collision for the " << scene.checker << " checker at a resolution of "
-         << *scene.spec.octree.resolution << " m";
-    if (scene.checker != "fcl") {
+         << " is in collision for the " << checkerKindName(scene.checker)
+         << " checker at a resolution of " << *scene.spec.octree.resolution << " m";
+    if (scene.checker != CheckerKind::kFcl) {
       const FclValidityChecker exact(scene.setup->getSpaceInformation(), scene.fcl_model);
       if (exact.isValid(state)) {
         what << "; FCL (exact) finds it free, so only the voxels' margin collides: a finer "
@@ -257,7 +247,8 @@ int info(const Args& a) {
     std::cout << "\n";
   }
   std::cout << "resolution: " << *scene.spec.octree.resolution << " m, rounding "
-            << toString(scene.spec.octree.rounding) << ", checker " << scene.checker << "\n"
+            << toString(scene.spec.octree.rounding) << ", checker "
+            << checkerKindName(scene.checker) << "\n"
             << scene.model->report().toString();
   return 0;
 }

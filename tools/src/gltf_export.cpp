@@ -1,4 +1,4 @@
-#include "octomotion/planner/gltf_export.h"
+#include "octomotion/tools/gltf_export.h"
 
 #include <algorithm>
 #include <cmath>

@@ -25,14 +25,15 @@ struct StudyPlanner {
 
 struct TradeStudyOptions {
   std::string scene_path;
-  // Package paths, the seed, the time limit, and the scene's octree options that apply to every
-  // setting: self_pair_tables, exact_primitives and max_surface_voxels (they override the scene's).
-  // The settings themselves (resolution, rounding, checker, self_link_resolution) come from the
-  // fields below.
+  // Applied to the scene as loadPlanningScene applies them (loadSceneInputs): package paths, the
+  // time limit, and the octree options that hold for every setting (self_pair_tables,
+  // exact_primitives, max_surface_voxels). The settings themselves (resolution, rounding,
+  // checker, link resolutions) come from the fields below, the seed from `seed`.
   SceneOverrides overrides;
   std::vector<double> resolutions;  // metres; empty: defaultResolutions()
   std::vector<Rounding> roundings = {Rounding::kConservative, Rounding::kCenter};
-  std::vector<CheckerPath> paths = {CheckerPath::kMoveTree, CheckerPath::kFused};
+  // The octree checker paths measured (kOctree, kOctreeFused; the FCL kinds are always run).
+  std::vector<CheckerKind> octree_checkers = {CheckerKind::kOctree, CheckerKind::kOctreeFused};
   bool fcl_octomap = true;  // also FCL+OctoMap at every resolution (when it is built in)
   // The links' source-tree voxel size as a multiple of each resolution; empty: the library's
   // default (kDefaultLinkResolutionRatio). Finer link trees shrink the conservative margin.
@@ -44,6 +45,7 @@ struct TradeStudyOptions {
   // The moveTree path is orders of magnitude slower at fine resolutions; it checks only the
   // first `move_tree_states` of the same states (0: all of them).
   std::size_t move_tree_states = 0;
+  // Seeds the states and, before the planning runs, OMPL's random numbers.
   std::uint64_t seed = 1;
   // Planning (skipped when `runs` is 0 or the scene has no start and goal).
   std::vector<StudyPlanner> planners = {{"RRTConnect", 0.0}, {"RRTstar", 0.0}};
@@ -53,6 +55,8 @@ struct TradeStudyOptions {
   // that resolution; true plans every setting.
   bool plan_every_setting = false;
   std::string log_dir;  // where the Benchmark .log files go; empty: none written
+  // Keep every row's answers (CheckRow::answers), so that a caller can score them itself.
+  bool keep_answers = false;
   std::function<void(const std::string&)> progress;  // one line per step; may be empty
 };
 
@@ -65,7 +69,7 @@ std::vector<double> defaultResolutions(bool free_flying, double scene_resolution
 // "colliding" classify the states by FCL's exact answer.
 struct CheckRow {
   std::string scene;
-  std::string checker;    // octree | octree-fused | fcl | fcl-octomap
+  CheckerKind checker = CheckerKind::kFcl;
   double resolution = 0;  // metres; 0 for fcl
   std::string rounding;   // conservative | center; empty for fcl and fcl-octomap
   std::size_t states = 0, free_states = 0, colliding_states = 0;
@@ -91,10 +95,14 @@ struct CheckRow {
   // speedup_vs_fcl (an FCL+OctoMap environment-only pass right before each of this checker's);
   // -1 when not measured.
   double env_speedup_vs_fcl_octomap = -1;
+  // The full check's answer (true: in collision) for each of the first `states` states, when
+  // TradeStudyOptions::keep_answers is set; every row's state i is the same state.
+  std::vector<bool> answers;
 };
 
 struct PlanRow {
-  std::string scene, planner, checker;
+  std::string scene, planner;
+  CheckerKind checker = CheckerKind::kFcl;
   double resolution = 0;
   std::string rounding;
   double time_limit = 0;
@@ -143,8 +151,31 @@ void writeMarkdown(const TradeStudyResult& result, std::ostream& out);
 void writeTradeoffPlotData(const TradeStudyResult& result, std::ostream& out);
 void writePlanningPlotData(const TradeStudyResult& result, std::ostream& out);
 
-// The study's targets (docs/trade-off.md, "Targets") evaluated on one scene's rows: one
-// markdown bullet per target with the measured ratio and margin.
-void writeTargets(const TradeStudyResult& result, std::ostream& out);
+// Targets for the octree checkers against the references (docs/trade-off.md, "Targets"); the
+// programs that report them supply the values.
+struct StudyTargets {
+  // Fixed-base robots: the best octree setting without false negatives and at most this
+  // false-positive rate must be full_speedup x FCL's full check and env_speedup_vs_fcl_octomap x
+  // FCL+OctoMap's environment-only check.
+  double max_fp_rate;
+  double full_speedup;
+  double env_speedup_vs_fcl_octomap;
+  // Free-flying bodies: the fused conservative octree at every resolution against FCL and
+  // FCL+OctoMap.
+  double rigid_full_speedup;
+  double rigid_speedup_vs_fcl_octomap;
+  // RRTConnect's median planning time with FCL / with the fused conservative octree.
+  double planning_speedup;
+  std::size_t states;  // the state count the targets are stated for
+};
+
+// `targets` evaluated on one scene's rows: one markdown bullet per target with the measured
+// ratio and margin.
+void writeTargets(const TradeStudyResult& result, const StudyTargets& targets, std::ostream& out);
+
+// "octree-fused 2 cm conservative": a setting's name in progress lines, tables and log names.
+std::string settingName(CheckerKind checker, double resolution, const std::string& rounding);
+// "2 cm", "5 mm".
+std::string resolutionLabel(double resolution);
 
 }  // namespace octomotion
