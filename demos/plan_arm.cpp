@@ -12,8 +12,9 @@
 #include <ompl/util/Console.h>
 
 #include "octomotion/planner/gltf_export.h"
-#include "octomotion/planner/ompl/octree_validity_checker.h"
 #include "octomotion/planner/ompl/planning_scene.h"
+#include "octomotion/planner/ompl/state_space.h"
+#include "octomotion/planner/ompl/validity_checker.h"
 
 using namespace octomotion;
 
