@@ -11,8 +11,9 @@
 
 #include <ompl/util/Console.h>
 
-#include "octomotion/planner/ompl/octree_validity_checker.h"
 #include "octomotion/planner/ompl/planning_scene.h"
+#include "octomotion/planner/ompl/state_space.h"
+#include "octomotion/planner/ompl/validity_checker.h"
 #include "octomotion/tools/gltf_export.h"
 
 using namespace octomotion;

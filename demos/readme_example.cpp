@@ -3,7 +3,8 @@
 #include <memory>
 
 // README example begin
-#include <octomotion/planner/ompl/octree_validity_checker.h>
+#include <octomotion/planner/ompl/state_space.h>
+#include <octomotion/planner/ompl/validity_checker.h>
 #include <octomotion/planner/scene/scene.h>
 #include <ompl/geometric/SimpleSetup.h>
 using namespace octomotion;

@@ -11,8 +11,9 @@
 #include <ompl/base/spaces/SE3StateSpace.h>
 #include <ompl/util/Console.h>
 
-#include "octomotion/planner/ompl/octree_validity_checker.h"
 #include "octomotion/planner/ompl/planning_scene.h"
+#include "octomotion/planner/ompl/state_space.h"
+#include "octomotion/planner/ompl/validity_checker.h"
 
 namespace octomotion {
 namespace {

@@ -15,8 +15,8 @@
 #include <ompl/base/goals/GoalState.h>
 #include <ompl/util/Console.h>
 
-#include "octomotion/planner/ompl/octree_validity_checker.h"
 #include "octomotion/planner/ompl/planning_scene.h"
+#include "octomotion/planner/ompl/state_space.h"
 
 namespace octomotion {
 namespace {

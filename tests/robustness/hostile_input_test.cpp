@@ -23,7 +23,6 @@
 
 #include "octomotion/error.h"
 #include "octomotion/octree/mesh.h"
-#include "octomotion/planner/ompl/octree_validity_checker.h"
 #include "octomotion/planner/ompl/planning_scene.h"
 #include "octomotion/planner/robot/package_locator.h"
 #include "octomotion/planner/robot/robot_model.h"

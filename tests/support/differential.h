@@ -544,8 +544,10 @@ inline DifferentialReport runDifferential(const DifferentialOptions& options) {
     PathTally& tally = report.paths[pathName(c, exact_applied)];
     ++tally.cases;
     ++report.cases;
-    CheckScratch scratch = octree.makeScratch();
-    auto exact = fcl.makeScratch();
+    const OctreeBackend checked(scene.model, path);
+    const std::unique_ptr<BackendScratch> scratch = checked.makeBackendScratch();
+    const std::unique_ptr<BackendScratch> exact = fcl.makeBackendScratch();
+    const RobotData& poses = checked.scratchOf(*scratch).check.robot;
     const std::vector<Sample> samples = uniformSamples(scene, options.states_per_case, rng());
     const Solids solids(scene);
     std::size_t case_missed = 0, case_beyond = 0;
@@ -554,7 +556,7 @@ inline DifferentialReport runDifferential(const DifferentialOptions& options) {
       if (first.empty()) first = what + " at " + describe(s);
     };
     for (const Sample& s : samples) {
-      const auto [fe, fs, oe, os] = answersAt(s, fcl, *exact, octree, path, scratch);
+      const auto [fe, fs, oe, os] = answersAt(s, fcl, *exact, checked, *scratch);
       tally.fcl_env += fe;
       tally.fcl_self += fs;
       if (fe && !oe) {
@@ -567,9 +569,9 @@ inline DifferentialReport runDifferential(const DifferentialOptions& options) {
       }
       if (oe && !fe) {
         ++tally.extra_env;
-        const double d = fcl.environmentDistance(*exact, 2 * delta_env);
+        const double d = fcl.environmentDistance(fcl.scratchOf(*exact), 2 * delta_env);
         if (d <= delta_env) tally.ratio.push_back(d / delta_env);
-        if (d > delta_env && solids.environmentNested(scratch.robot)) {
+        if (d > delta_env && solids.environmentNested(poses)) {
           ++tally.inside_solid;
         } else if (d > delta_env) {
           ++tally.beyond, ++case_beyond;
@@ -579,9 +581,9 @@ inline DifferentialReport runDifferential(const DifferentialOptions& options) {
       }
       if (os && !fs) {
         ++tally.extra_self;
-        const double d = fcl.selfDistance(*exact, 2 * delta_self);
+        const double d = fcl.selfDistance(fcl.scratchOf(*exact), 2 * delta_self);
         if (d <= delta_self) tally.ratio.push_back(d / delta_self);
-        if (d > delta_self && solids.selfNested(scratch.robot)) {
+        if (d > delta_self && solids.selfNested(poses)) {
           ++tally.inside_solid;
         } else if (d > delta_self) {
           ++tally.beyond, ++case_beyond;

@@ -12,6 +12,8 @@
 
 #include <Eigen/Geometry>
 
+#include "octomotion/planner/model/collision_backend.h"
+#include "octomotion/planner/model/octree_backend.h"
 #include "octomotion/planner/ompl/planning_scene.h"
 #include "octomotion/planner/reference/fcl_checker.h"
 
@@ -63,21 +65,20 @@ inline std::string describe(const Sample& s) {
   return out.str();
 }
 
-// FCL's and the octree model's answers at one sample (environment, self pairs); the octree's
-// link poses stay in `scratch` for further queries.
+// The reference's (FCL) and the checked backend's (octree) answers at one sample: environment
+// and self pairs. Each backend's link poses stay in its scratch for further queries.
 struct Answers {
   bool fcl_env, fcl_self, octree_env, octree_self;
 };
-inline Answers answersAt(const Sample& s, const FclCollisionModel& fcl,
-                         FclCollisionModel::Scratch& exact, const OctreeCollisionModel& octree,
-                         CheckerPath path, CheckScratch& scratch) {
-  fcl.setConfiguration(s.q.data(), s.q.size(), s.X_WB, exact);
+inline Answers answersAt(const Sample& s, const CollisionBackend& reference, BackendScratch& exact,
+                         const CollisionBackend& checked, BackendScratch& scratch) {
+  const double* q = s.q.data();
+  const std::size_t n = s.q.size();
   Answers a;
-  a.fcl_env = fcl.environmentInCollision(exact);
-  a.fcl_self = fcl.selfInCollision(exact);
-  octree.robot().forwardKinematics(s.q.data(), s.q.size(), scratch.robot, s.X_WB);
-  a.octree_env = octree.environmentInCollision(path, scratch);
-  a.octree_self = octree.selfInCollision(path, scratch);
+  a.fcl_env = reference.environmentInCollision(q, n, s.X_WB, exact);
+  a.fcl_self = reference.selfInCollision(q, n, s.X_WB, exact);
+  a.octree_env = checked.environmentInCollision(q, n, s.X_WB, scratch);
+  a.octree_self = checked.selfInCollision(q, n, s.X_WB, scratch);
   return a;
 }
 

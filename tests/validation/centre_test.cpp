@@ -56,25 +56,22 @@ TEST_P(Centre, FalseRatesStayWithinTheContactBand) {
   const OctreeCollisionModel& octree = *scene.model;
   const std::shared_ptr<const FclCollisionModel> reference = exactReference(scene);
   const FclCollisionModel& fcl = *reference;
-  const RobotModel& robot = octree.robot();
   const Resolutions res = resolutionsOf(octree);
   const double w_fp = std::sqrt(3.0) / 2 * res.link + kTieSlack;
   const double w_fn_env = std::sqrt(3.0) / 2 * (res.environment + res.link);
   const double w_fn_self = std::sqrt(3.0) * res.link;
 
-  CheckScratch scratch = octree.makeScratch();
-  auto exact = fcl.makeScratch();
+  const OctreeBackend checked(scene.model, CheckerPath::kFused);
+  const std::unique_ptr<BackendScratch> scratch = checked.makeBackendScratch();
+  const std::unique_ptr<BackendScratch> exact = fcl.makeBackendScratch();
+  FclCollisionModel::Scratch& fcl_scratch = fcl.scratchOf(*exact);
   Rates env, self;
   for (const Sample& s : uniformSamples(scene, kStates, kSeed)) {
-    fcl.setConfiguration(s.q.data(), s.q.size(), s.X_WB, *exact);
-    const bool fe = fcl.environmentInCollision(*exact);
-    const bool fs = fcl.selfInCollision(*exact);
-    robot.forwardKinematics(s.q.data(), s.q.size(), scratch.robot, s.X_WB);
-    const bool oe = octree.environmentInCollision(CheckerPath::kFused, scratch);
-    const bool os = octree.selfInCollision(CheckerPath::kFused, scratch);
-    count(env, fe, oe, fe ? 0.0 : fcl.environmentDistance(*exact, w_fn_env * 1.001), w_fp,
+    const auto [fe, fs, oe, os] = answersAt(s, fcl, *exact, checked, *scratch);
+    count(env, fe, oe, fe ? 0.0 : fcl.environmentDistance(fcl_scratch, w_fn_env * 1.001), w_fp,
           w_fn_env);
-    count(self, fs, os, fs ? 0.0 : fcl.selfDistance(*exact, w_fn_self * 1.001), w_fp, w_fn_self);
+    count(self, fs, os, fs ? 0.0 : fcl.selfDistance(fcl_scratch, w_fn_self * 1.001), w_fp,
+          w_fn_self);
   }
   auto rate = [](std::size_t n) { return 100.0 * static_cast<double>(n) / kStates; };
   std::cout << "[ rates    ] " << sceneLabel(GetParam()) << " centre r_e " << res.environment

@@ -49,8 +49,9 @@ inline ConservativeCounts checkConservative(const std::string& scene_file, Check
       std::sqrt(3.0) * ((only_primitives ? 0.0 : r.environment) + r.link) + kTieSlack;
   const double delta_self = 2 * std::sqrt(3.0) * r.self_link + kTieSlack;
 
-  CheckScratch scratch = octree.makeScratch();
-  auto exact = fcl.makeScratch();
+  const OctreeBackend checked(scene.model, path);
+  const std::unique_ptr<BackendScratch> scratch = checked.makeBackendScratch();
+  const std::unique_ptr<BackendScratch> exact = fcl.makeBackendScratch();
   std::size_t fcl_env = 0, fcl_self = 0, octree_env = 0, octree_self = 0;
   std::size_t missed_env = 0, missed_self = 0, extra_env = 0, extra_self = 0;
   std::size_t beyond_env = 0, beyond_self = 0;
@@ -59,7 +60,7 @@ inline ConservativeCounts checkConservative(const std::string& scene_file, Check
   const std::vector<Sample> samples = uniformSamples(scene, kStates, kSeed);
   for (std::size_t i = begin; i < end; ++i) {
     const Sample& s = samples[i];
-    const auto [fe, fs, oe, os] = answersAt(s, fcl, *exact, octree, path, scratch);
+    const auto [fe, fs, oe, os] = answersAt(s, fcl, *exact, checked, *scratch);
     fcl_env += fe;
     fcl_self += fs;
     octree_env += oe;
@@ -74,7 +75,7 @@ inline ConservativeCounts checkConservative(const std::string& scene_file, Check
     }
     if (oe && !fe) {
       ++extra_env;
-      const double d = fcl.environmentDistance(*exact, 2 * delta_env);
+      const double d = fcl.environmentDistance(fcl.scratchOf(*exact), 2 * delta_env);
       worst_env = std::max(worst_env, d);
       if (d > delta_env) {
         ++beyond_env;
@@ -86,7 +87,7 @@ inline ConservativeCounts checkConservative(const std::string& scene_file, Check
     }
     if (os && !fs) {
       ++extra_self;
-      const double d = fcl.selfDistance(*exact, 2 * delta_self);
+      const double d = fcl.selfDistance(fcl.scratchOf(*exact), 2 * delta_self);
       worst_self = std::max(worst_self, d);
       if (d > delta_self) {
         ++beyond_self;

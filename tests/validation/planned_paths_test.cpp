@@ -6,7 +6,7 @@
 
 #include <ompl/geometric/PathGeometric.h>
 
-#include "octomotion/planner/ompl/octree_validity_checker.h"
+#include "octomotion/planner/ompl/state_space.h"
 #include "validation_common.h"
 
 // GCC 12 with -fsanitize=address -O3 reports a false -Wmaybe-uninitialized inside

@@ -19,8 +19,9 @@
 #include "commands.h"
 #include "octomotion/error.h"
 #include "octomotion/input_limits.h"
-#include "octomotion/planner/ompl/octree_validity_checker.h"
 #include "octomotion/planner/ompl/planning_scene.h"
+#include "octomotion/planner/ompl/state_space.h"
+#include "octomotion/planner/ompl/validity_checker.h"
 
 namespace {
 

@@ -13,7 +13,8 @@
 #include <ompl/util/RandomNumbers.h>
 
 #include "octomotion/octree/mesh.h"
-#include "octomotion/planner/ompl/octree_validity_checker.h"
+#include "octomotion/planner/ompl/state_space.h"
+#include "octomotion/planner/ompl/validity_checker.h"
 #include "octomotion/planner/reference/fcl_checker.h"
 #include "octomotion/planner/reference/fcl_octomap_checker.h"
 #include "study_format.h"

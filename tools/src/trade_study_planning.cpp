@@ -12,7 +12,8 @@
 #include <ompl/tools/benchmark/Benchmark.h>
 
 #include "octomotion/error.h"
-#include "octomotion/planner/ompl/octree_validity_checker.h"
+#include "octomotion/planner/ompl/state_space.h"
+#include "octomotion/planner/ompl/validity_checker.h"
 #include "trade_study_internal.h"
 
 namespace octomotion::trade_study_internal {

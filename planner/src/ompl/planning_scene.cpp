@@ -28,7 +28,9 @@
 #include <ompl/util/RandomNumbers.h>
 
 #include "octomotion/octree/mesh.h"
-#include "octomotion/planner/ompl/octree_validity_checker.h"
+#include "octomotion/planner/model/octree_backend.h"
+#include "octomotion/planner/ompl/state_space.h"
+#include "octomotion/planner/ompl/validity_checker.h"
 #include "octomotion/planner/robot/collision_meshes.h"
 
 namespace octomotion {
@@ -54,6 +56,13 @@ std::string shortNumber(double v) {
   std::ostringstream s;
   s << v;
   return s.str();
+}
+
+// The collision backend the scene's checker names (building the reference model it needs).
+std::shared_ptr<const CollisionBackend> checkerBackend(const PlanningScene& scene) {
+  if (scene.checker == CheckerKind::kFcl) return scene.fclModel();
+  if (scene.checker == CheckerKind::kFclOctomap) return scene.fclOctomapModel();
+  return std::make_shared<const OctreeBackend>(scene.model, octreeCheckerPath(scene.checker));
 }
 
 // The OMPL part of loadPlanningScene and plan, whose ompl::Exceptions the callers translate.
@@ -392,15 +401,7 @@ void setUpOmpl(PlanningScene& scene, bool free_flying, double robot_diagonal, do
       free_flying ? robot_diagonal : scene.model->report().reach_W.sizes().maxCoeff() / 2,
       resolution);
   scene.checker = spec.octree.checker;
-  if (scene.checker == CheckerKind::kFcl) {
-    scene.setup->setStateValidityChecker(std::make_shared<FclValidityChecker>(si, scene.fcl_model));
-  } else if (scene.checker == CheckerKind::kFclOctomap) {
-    scene.setup->setStateValidityChecker(
-        std::make_shared<FclOctomapValidityChecker>(si, scene.fcl_octomap_model));
-  } else {
-    scene.setup->setStateValidityChecker(
-        std::make_shared<OctreeValidityChecker>(si, scene.model, octreeCheckerPath(scene.checker)));
-  }
+  scene.setup->setStateValidityChecker(makeValidityChecker(si, checkerBackend(scene)));
   auto toState = [&](const StateSpec& s, const char* field) {
     ob::ScopedState<> state(si);
     if (free_flying) {

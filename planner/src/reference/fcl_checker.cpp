@@ -5,10 +5,9 @@
 #include <fcl/broadphase/broadphase_dynamic_AABB_tree.h>
 #include <fcl/narrowphase/collision.h>
 #include <fcl/narrowphase/distance.h>
-#include <ompl/base/SpaceInformation.h>
 
 #include "../robot/internal/fcl_robot.h"
-#include "octomotion/planner/ompl/octree_validity_checker.h"
+#include "octomotion/planner/model/collision_model.h"
 
 namespace octomotion {
 
@@ -24,7 +23,7 @@ struct FclCollisionModel::Geometry {
   fcl::DynamicAABBTreeCollisionManagerd environment_manager;
 };
 
-struct FclCollisionModel::Scratch {
+struct FclCollisionModel::Scratch final : BackendScratch {
   fcl_internal::RobotScratch robot;
 };
 
@@ -72,7 +71,46 @@ void FclCollisionModel::ScratchDeleter::operator()(Scratch* s) const {
 FclCollisionModel::ScratchPtr FclCollisionModel::makeScratch() const {
   ScratchPtr s(new Scratch);
   geometry_->robot.initScratch(robot_, s->robot);
+  s->owner = id_;
   return s;
+}
+
+std::unique_ptr<BackendScratch> FclCollisionModel::makeBackendScratch() const {
+  return std::unique_ptr<BackendScratch>(makeScratch().release());
+}
+
+FclCollisionModel::Scratch& FclCollisionModel::scratchOf(BackendScratch& scratch) const {
+  if (scratch.owner != id_) {
+    throw InvalidArgument("FclCollisionModel: the scratch was made by another backend");
+  }
+  return static_cast<Scratch&>(scratch);
+}
+
+bool FclCollisionModel::inCollision(const double* q, std::size_t q_size,
+                                    const Eigen::Isometry3d& X_WB, BackendScratch& scratch) const {
+  Scratch& s = scratchOf(scratch);
+  setConfiguration(q, q_size, X_WB, s);
+  return inCollision(s);
+}
+
+bool FclCollisionModel::environmentInCollision(const double* q, std::size_t q_size,
+                                               const Eigen::Isometry3d& X_WB,
+                                               BackendScratch& scratch) const {
+  Scratch& s = scratchOf(scratch);
+  setConfiguration(q, q_size, X_WB, s);
+  return environmentInCollision(s);
+}
+
+bool FclCollisionModel::selfInCollision(const double* q, std::size_t q_size,
+                                        const Eigen::Isometry3d& X_WB,
+                                        BackendScratch& scratch) const {
+  Scratch& s = scratchOf(scratch);
+  setConfiguration(q, q_size, X_WB, s);
+  return selfInCollision(s);
+}
+
+double FclCollisionModel::clearance(BackendScratch& scratch) const {
+  return environmentDistance(scratchOf(scratch));
 }
 
 void FclCollisionModel::setConfiguration(const double* q, std::size_t q_size,
@@ -153,50 +191,6 @@ double FclCollisionModel::environmentDistance(Scratch& s, double cap) const {
 
 double FclCollisionModel::selfDistance(Scratch& s, double cap) const {
   return geometry_->robot.selfDistance(s.robot, cap);
-}
-
-namespace {
-struct FclThreadScratch {
-  std::uint64_t owner = 0;
-  FclCollisionModel::ScratchPtr scratch;
-  std::vector<double> q;
-  Eigen::Isometry3d X_WB = Eigen::Isometry3d::Identity();
-};
-FclThreadScratch& fclScratch(const FclCollisionModel& model) {
-  thread_local FclThreadScratch t;
-  if (t.owner != model.id()) {
-    t.scratch = model.makeScratch();
-    t.q.assign(static_cast<std::size_t>(model.robot().variableCount()), 0.0);
-    t.owner = model.id();
-  }
-  return t;
-}
-}  // namespace
-
-FclValidityChecker::FclValidityChecker(const ompl::base::SpaceInformationPtr& si,
-                                       std::shared_ptr<const FclCollisionModel> model)
-    : ompl::base::StateValidityChecker(si), model_(std::move(model)), in_bounds_(si) {
-  specs_.clearanceComputationType = ompl::base::StateValidityCheckerSpecs::EXACT;
-}
-
-FclValidityChecker::~FclValidityChecker() = default;
-
-bool FclValidityChecker::isValid(const ompl::base::State* state) const {
-  try {
-    FclThreadScratch& t = fclScratch(*model_);
-    if (!in_bounds_(state)) return false;
-    if (!stateToConfiguration(model_->robot(), state, t.q, t.X_WB)) return false;
-    model_->setConfiguration(t.q.data(), t.q.size(), t.X_WB, *t.scratch);
-    return !model_->inCollision(*t.scratch);
-  } catch (const std::exception&) {
-    return false;
-  }
-}
-
-double FclValidityChecker::clearance(const ompl::base::State* state) const {
-  if (!isValid(state)) return 0.0;
-  FclThreadScratch& t = fclScratch(*model_);
-  return model_->environmentDistance(*t.scratch);
 }
 
 }  // namespace octomotion

@@ -5,12 +5,10 @@
 #include <fcl/geometry/octree/octree.h>
 #include <fcl/narrowphase/collision.h>
 #include <octomap/OcTree.h>
-#include <ompl/base/SpaceInformation.h>
 
 #include "../robot/internal/fcl_robot.h"
 #include "octomotion/octree/octomap_io.h"
 #include "octomotion/planner/model/collision_model.h"
-#include "octomotion/planner/ompl/octree_validity_checker.h"
 
 namespace octomotion {
 
@@ -22,7 +20,7 @@ struct FclOctomapCollisionModel::Geometry {
   std::unique_ptr<fcl::CollisionObjectd> environment;  // null when nothing is occupied
 };
 
-struct FclOctomapCollisionModel::Scratch {
+struct FclOctomapCollisionModel::Scratch final : BackendScratch {
   fcl_internal::RobotScratch robot;
 };
 
@@ -63,7 +61,44 @@ void FclOctomapCollisionModel::ScratchDeleter::operator()(Scratch* s) const {
 FclOctomapCollisionModel::ScratchPtr FclOctomapCollisionModel::makeScratch() const {
   ScratchPtr s(new Scratch);
   geometry_->robot.initScratch(robot_, s->robot);
+  s->owner = id_;
   return s;
+}
+
+std::unique_ptr<BackendScratch> FclOctomapCollisionModel::makeBackendScratch() const {
+  return std::unique_ptr<BackendScratch>(makeScratch().release());
+}
+
+FclOctomapCollisionModel::Scratch& FclOctomapCollisionModel::scratchOf(
+    BackendScratch& scratch) const {
+  if (scratch.owner != id_) {
+    throw InvalidArgument("FclOctomapCollisionModel: the scratch was made by another backend");
+  }
+  return static_cast<Scratch&>(scratch);
+}
+
+bool FclOctomapCollisionModel::inCollision(const double* q, std::size_t q_size,
+                                           const Eigen::Isometry3d& X_WB,
+                                           BackendScratch& scratch) const {
+  Scratch& s = scratchOf(scratch);
+  setConfiguration(q, q_size, X_WB, s);
+  return inCollision(s);
+}
+
+bool FclOctomapCollisionModel::environmentInCollision(const double* q, std::size_t q_size,
+                                                      const Eigen::Isometry3d& X_WB,
+                                                      BackendScratch& scratch) const {
+  Scratch& s = scratchOf(scratch);
+  setConfiguration(q, q_size, X_WB, s);
+  return environmentInCollision(s);
+}
+
+bool FclOctomapCollisionModel::selfInCollision(const double* q, std::size_t q_size,
+                                               const Eigen::Isometry3d& X_WB,
+                                               BackendScratch& scratch) const {
+  Scratch& s = scratchOf(scratch);
+  setConfiguration(q, q_size, X_WB, s);
+  return selfInCollision(s);
 }
 
 void FclOctomapCollisionModel::setConfiguration(const double* q, std::size_t q_size,
@@ -88,43 +123,6 @@ bool FclOctomapCollisionModel::selfInCollision(Scratch& s) const {
 
 bool FclOctomapCollisionModel::inCollision(Scratch& s) const {
   return environmentInCollision(s) || selfInCollision(s);
-}
-
-namespace {
-struct OctomapThreadScratch {
-  std::uint64_t owner = 0;
-  FclOctomapCollisionModel::ScratchPtr scratch;
-  std::vector<double> q;
-  Eigen::Isometry3d X_WB = Eigen::Isometry3d::Identity();
-};
-OctomapThreadScratch& octomapScratch(const FclOctomapCollisionModel& model) {
-  thread_local OctomapThreadScratch t;
-  if (t.owner != model.id()) {
-    t.scratch = model.makeScratch();
-    t.q.assign(static_cast<std::size_t>(model.robot().variableCount()), 0.0);
-    t.owner = model.id();
-  }
-  return t;
-}
-}  // namespace
-
-FclOctomapValidityChecker::FclOctomapValidityChecker(
-    const ompl::base::SpaceInformationPtr& si,
-    std::shared_ptr<const FclOctomapCollisionModel> model)
-    : ompl::base::StateValidityChecker(si), model_(std::move(model)), in_bounds_(si) {}
-
-FclOctomapValidityChecker::~FclOctomapValidityChecker() = default;
-
-bool FclOctomapValidityChecker::isValid(const ompl::base::State* state) const {
-  try {
-    OctomapThreadScratch& t = octomapScratch(*model_);
-    if (!in_bounds_(state)) return false;
-    if (!stateToConfiguration(model_->robot(), state, t.q, t.X_WB)) return false;
-    model_->setConfiguration(t.q.data(), t.q.size(), t.X_WB, *t.scratch);
-    return !model_->inCollision(*t.scratch);
-  } catch (const std::exception&) {
-    return false;
-  }
 }
 
 }  // namespace octomotion

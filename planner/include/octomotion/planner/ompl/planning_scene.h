@@ -16,6 +16,8 @@
 #include <ompl/geometric/SimpleSetup.h>
 
 #include "octomotion/planner/model/collision_model.h"
+#include "octomotion/planner/ompl/state_space.h"
+#include "octomotion/planner/ompl/validity_checker.h"
 #include "octomotion/planner/reference/fcl_checker.h"
 #include "octomotion/planner/reference/fcl_octomap_checker.h"
 #include "octomotion/planner/scene/scene.h"

@@ -7,6 +7,9 @@
 //
 // FCL treats meshes as surfaces: a mesh swallowed whole by another mesh does not collide.
 // Primitives are solids.
+//
+// A CollisionBackend with exact clearance; its OMPL checker is FclValidityChecker
+// (ompl/validity_checker.h).
 #pragma once
 
 #include <cstdint>
@@ -14,24 +17,21 @@
 #include <memory>
 #include <vector>
 
-#include <ompl/base/StateValidityChecker.h>
-
-#include "octomotion/planner/model/collision_model.h"
-#include "octomotion/planner/ompl/octree_validity_checker.h"
+#include "octomotion/planner/model/collision_backend.h"
 #include "octomotion/planner/robot/robot_model.h"
 #include "octomotion/planner/scene/environment_geometry.h"
 
 namespace octomotion {
 
-class FclCollisionModel {
+class FclCollisionModel final : public CollisionBackend {
  public:
   // Mesh conventions as in CollisionModelOptions.
   FclCollisionModel(const RobotModel& robot, const EnvironmentGeometry& environment,
                     bool keep_mesh_root_transform = false, bool center_mesh_vertices = false);
-  ~FclCollisionModel();
+  ~FclCollisionModel() override;
   FclCollisionModel(FclCollisionModel&&) noexcept;
 
-  struct Scratch;  // per-thread: FK results and the robot's FCL objects (opaque)
+  struct Scratch;  // per-thread: FK results and the robot's FCL objects (opaque BackendScratch)
   struct ScratchDeleter {
     void operator()(Scratch* s) const;
   };
@@ -55,28 +55,30 @@ class FclCollisionModel {
   // without pairs); `cap` as above.
   double selfDistance(Scratch& scratch, double cap = std::numeric_limits<double>::infinity()) const;
 
-  const RobotModel& robot() const { return robot_; }
-  std::uint64_t id() const { return id_; }  // see OctreeCollisionModel::id
+  // CollisionBackend: setConfiguration, then the query above; clearance is environmentDistance.
+  std::unique_ptr<BackendScratch> makeBackendScratch() const override;
+  bool inCollision(const double* q, std::size_t q_size, const Eigen::Isometry3d& X_WB,
+                   BackendScratch& scratch) const override;
+  bool environmentInCollision(const double* q, std::size_t q_size, const Eigen::Isometry3d& X_WB,
+                              BackendScratch& scratch) const override;
+  bool selfInCollision(const double* q, std::size_t q_size, const Eigen::Isometry3d& X_WB,
+                       BackendScratch& scratch) const override;
+  double clearance(BackendScratch& scratch) const override;
+  ClearanceBound clearanceBound() const override { return ClearanceBound::kExact; }
+
+  // The scratch behind one made by makeBackendScratch, for the queries above (InvalidArgument for
+  // another backend's).
+  Scratch& scratchOf(BackendScratch& scratch) const;
+
+  const RobotModel& robot() const override { return robot_; }
+  std::uint64_t id() const override { return id_; }  // see OctreeCollisionModel::id
+  CheckerKind kind() const override { return CheckerKind::kFcl; }
 
  private:
   struct Geometry;
   std::uint64_t id_;
   RobotModel robot_;
   std::unique_ptr<Geometry> geometry_;
-};
-
-class FclValidityChecker : public ompl::base::StateValidityChecker {
- public:
-  FclValidityChecker(const ompl::base::SpaceInformationPtr& si,
-                     std::shared_ptr<const FclCollisionModel> model);
-  ~FclValidityChecker() override;
-  bool isValid(const ompl::base::State* state) const override;
-  // Exact distance to the environment (0 when invalid).
-  double clearance(const ompl::base::State* state) const override;
-
- private:
-  std::shared_ptr<const FclCollisionModel> model_;
-  BoundsCheck in_bounds_;
 };
 
 }  // namespace octomotion

@@ -6,30 +6,31 @@
 // and the occupied cubes are inserted as OctoMap nodes directly (no ray casting), so the map holds
 // exactly the voxels our own conservative environment tree holds on that grid. Point clouds mark
 // the voxel of each point; OctoMap files are resampled onto the grid.
+//
+// A CollisionBackend without clearance; its OMPL checker is FclOctomapValidityChecker
+// (ompl/validity_checker.h).
 #pragma once
 
 #include <cstdint>
 #include <memory>
 
-#include <ompl/base/StateValidityChecker.h>
-
-#include "octomotion/planner/ompl/octree_validity_checker.h"
+#include "octomotion/planner/model/collision_backend.h"
 #include "octomotion/planner/robot/robot_model.h"
 #include "octomotion/planner/scene/environment_geometry.h"
 
 namespace octomotion {
 
-class FclOctomapCollisionModel {
+class FclOctomapCollisionModel final : public CollisionBackend {
  public:
   // Mesh conventions as in CollisionModelOptions. Throws InvalidArgument for a bad resolution or
   // an environment outside OctoMap's key range (+-32768 voxels about the origin).
   FclOctomapCollisionModel(const RobotModel& robot, const EnvironmentGeometry& environment,
                            double resolution, bool keep_mesh_root_transform = false,
                            bool center_mesh_vertices = false);
-  ~FclOctomapCollisionModel();
+  ~FclOctomapCollisionModel() override;
   FclOctomapCollisionModel(FclOctomapCollisionModel&&) noexcept;
 
-  struct Scratch;  // per-thread: FK results and the robot's FCL objects (opaque)
+  struct Scratch;  // per-thread: FK results and the robot's FCL objects (opaque BackendScratch)
   struct ScratchDeleter {
     void operator()(Scratch* s) const;
   };
@@ -50,8 +51,24 @@ class FclOctomapCollisionModel {
   // Voxelizing the environment and building the OctoMap (not the robot's geometry).
   double buildSeconds() const { return build_seconds_; }
 
-  const RobotModel& robot() const { return robot_; }
-  std::uint64_t id() const { return id_; }  // see OctreeCollisionModel::id
+  // CollisionBackend: setConfiguration, then the query above; no clearance (always 0).
+  std::unique_ptr<BackendScratch> makeBackendScratch() const override;
+  bool inCollision(const double* q, std::size_t q_size, const Eigen::Isometry3d& X_WB,
+                   BackendScratch& scratch) const override;
+  bool environmentInCollision(const double* q, std::size_t q_size, const Eigen::Isometry3d& X_WB,
+                              BackendScratch& scratch) const override;
+  bool selfInCollision(const double* q, std::size_t q_size, const Eigen::Isometry3d& X_WB,
+                       BackendScratch& scratch) const override;
+  double clearance(BackendScratch&) const override { return 0.0; }
+  ClearanceBound clearanceBound() const override { return ClearanceBound::kNone; }
+
+  // The scratch behind one made by makeBackendScratch, for the queries above (InvalidArgument for
+  // another backend's).
+  Scratch& scratchOf(BackendScratch& scratch) const;
+
+  const RobotModel& robot() const override { return robot_; }
+  std::uint64_t id() const override { return id_; }  // see OctreeCollisionModel::id
+  CheckerKind kind() const override { return CheckerKind::kFclOctomap; }
 
  private:
   struct Geometry;
@@ -61,21 +78,6 @@ class FclOctomapCollisionModel {
   std::size_t octomap_bytes_ = 0;
   double build_seconds_ = 0;
   std::unique_ptr<Geometry> geometry_;
-};
-
-class FclOctomapValidityChecker : public ompl::base::StateValidityChecker {
- public:
-  FclOctomapValidityChecker(const ompl::base::SpaceInformationPtr& si,
-                            std::shared_ptr<const FclOctomapCollisionModel> model);
-  ~FclOctomapValidityChecker() override;
-  // Invalid when outside the space's bounds, non-finite, or in collision. Never throws.
-  bool isValid(const ompl::base::State* state) const override;
-
-  const FclOctomapCollisionModel& model() const { return *model_; }
-
- private:
-  std::shared_ptr<const FclOctomapCollisionModel> model_;
-  BoundsCheck in_bounds_;
 };
 
 }  // namespace octomotion

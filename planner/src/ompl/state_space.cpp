@@ -1,35 +1,15 @@
-#include "octomotion/planner/ompl/octree_validity_checker.h"
+#include "octomotion/planner/ompl/state_space.h"
 
 #include <cmath>
 #include <limits>
+#include <string>
 #include <typeinfo>
 
-#include <ompl/base/spaces/RealVectorStateSpace.h>
-#include <ompl/base/spaces/SE3StateSpace.h>
+#include "octomotion/error.h"
 
 namespace octomotion {
 
 namespace ob = ompl::base;
-
-namespace {
-
-// Per-thread scratch, rebuilt only when a thread switches to another model.
-struct ThreadScratch {
-  CheckScratch check;
-  std::vector<double> q;
-  Eigen::Isometry3d X_WB = Eigen::Isometry3d::Identity();
-};
-
-ThreadScratch& threadScratch(const OctreeCollisionModel& model) {
-  thread_local ThreadScratch scratch;
-  if (scratch.check.owner != model.id()) {
-    scratch.check = model.makeScratch();
-    scratch.q.assign(static_cast<std::size_t>(model.robot().variableCount()), 0.0);
-  }
-  return scratch;
-}
-
-}  // namespace
 
 ob::StateSpacePtr makeStateSpace(const RobotModel& robot,
                                  const Eigen::AlignedBox3d* position_bounds) {
@@ -143,39 +123,6 @@ void configurationToState(const RobotModel& robot, const std::vector<double>& q,
   }
   auto* s = state->as<ob::RealVectorStateSpace::StateType>();
   for (std::size_t i = 0; i < q.size(); ++i) s->values[i] = q[i];
-}
-
-OctreeValidityChecker::OctreeValidityChecker(const ob::SpaceInformationPtr& si,
-                                             std::shared_ptr<const OctreeCollisionModel> model,
-                                             CheckerPath path)
-    : ob::StateValidityChecker(si), model_(std::move(model)), path_(path), in_bounds_(si) {
-  specs_.clearanceComputationType = ob::StateValidityCheckerSpecs::BOUNDED_APPROXIMATE;
-}
-
-bool OctreeValidityChecker::check(const ob::State* state) const {
-  if (!in_bounds_(state)) return false;
-  ThreadScratch& t = threadScratch(*model_);
-  if (!stateToConfiguration(model_->robot(), state, t.q, t.X_WB)) return false;
-  model_->robot().forwardKinematics(t.q.data(), t.q.size(), t.check.robot,
-                                    model_->robot().isFreeFlying() ? t.X_WB : model_->baseMount());
-  return !model_->linksInCollision(path_, t.check);
-}
-
-bool OctreeValidityChecker::isValid(const ob::State* state) const {
-  try {
-    return check(state);
-  } catch (const std::exception&) {
-    return false;  // never throw into OMPL: an unusable state is an invalid one
-  }
-}
-
-double OctreeValidityChecker::clearance(const ob::State* state) const {
-  try {
-    if (!check(state)) return 0.0;
-    return model_->clearanceLowerBound(threadScratch(*model_).check);
-  } catch (const std::exception&) {
-    return 0.0;
-  }
 }
 
 }  // namespace octomotion

@@ -1,0 +1,76 @@
+// One interface over the collision checkers a scene can plan with: the octree model (through
+// OctreeBackend, model/octree_backend.h) and the two FCL references (reference/fcl_checker.h,
+// reference/fcl_octomap_checker.h), so that consumers (the OMPL checker, tests, benches) write one
+// measurement path. A backend is constant and shared by every thread; each thread queries it with
+// its own scratch. The concrete backends are final, so code templated on them
+// (ValidityChecker<Backend>, ompl/validity_checker.h) calls them without a virtual call.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+
+#include <Eigen/Geometry>
+
+#include "octomotion/planner/robot/robot_model.h"
+#include "octomotion/planner/scene/scene.h"
+
+namespace octomotion {
+
+// One thread's working memory for one backend's queries (link poses, narrow-phase buffers).
+// Opaque: each backend derives its own. Made by CollisionBackend::makeBackendScratch and usable
+// only with the backend that made it (the queries throw InvalidArgument for another's).
+struct BackendScratch {
+  virtual ~BackendScratch() = default;
+  std::uint64_t owner = 0;  // id() of the backend that made it
+};
+
+// What CollisionBackend::clearance returns (and OMPL's StateValidityCheckerSpecs says).
+enum class ClearanceBound {
+  kNone,        // no clearance: always 0
+  kLowerBound,  // a lower bound on the distance to the environment
+  kExact,       // the exact distance to the environment
+};
+
+class CollisionBackend {
+ public:
+  virtual ~CollisionBackend() = default;
+
+  virtual std::unique_ptr<BackendScratch> makeBackendScratch() const = 0;
+
+  // Poses the robot at q (joint values in RobotModel::variables() order) and X_WB (the base pose
+  // of a free-flying robot; fixed-base robots: the octree model uses the mount it was built with,
+  // the FCL references this pose) in the scratch, then tests the links against the environment
+  // and the checked self pairs against each other. Throws InvalidArgument for a non-finite input
+  // or a scratch made by another backend.
+  virtual bool inCollision(const double* q, std::size_t q_size, const Eigen::Isometry3d& X_WB,
+                           BackendScratch& scratch) const = 0;
+  // Its two halves, each posing the robot first: the environment only, the self pairs only.
+  virtual bool environmentInCollision(const double* q, std::size_t q_size,
+                                      const Eigen::Isometry3d& X_WB,
+                                      BackendScratch& scratch) const = 0;
+  virtual bool selfInCollision(const double* q, std::size_t q_size, const Eigen::Isometry3d& X_WB,
+                               BackendScratch& scratch) const = 0;
+
+  // Distance from the robot, posed by the scratch's last query, to the environment, as
+  // clearanceBound() says (0 in contact).
+  virtual double clearance(BackendScratch& scratch) const = 0;
+  virtual ClearanceBound clearanceBound() const = 0;
+
+  virtual const RobotModel& robot() const = 0;
+  // Unique for the process's lifetime (nextModelId), so per-thread scratch can tell which
+  // backend it belongs to. Backends over the same model may share it (and their scratch).
+  virtual std::uint64_t id() const = 0;
+  // Which checker this is, and its name in scene files and results.
+  virtual CheckerKind kind() const = 0;
+  const char* name() const { return checkerKindName(kind()); }
+
+ protected:
+  CollisionBackend() = default;
+  CollisionBackend(const CollisionBackend&) = default;
+  CollisionBackend(CollisionBackend&&) = default;
+  CollisionBackend& operator=(const CollisionBackend&) = default;
+  CollisionBackend& operator=(CollisionBackend&&) = default;
+};
+
+}  // namespace octomotion

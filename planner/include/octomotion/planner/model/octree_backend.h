@@ -1,0 +1,75 @@
+// The octree model as a CollisionBackend: a shared OctreeCollisionModel and the query path
+// (moveTree or fused) to check it with. The queries are inline so that code templated on
+// OctreeBackend calls the model directly.
+#pragma once
+
+#include <memory>
+
+#include "octomotion/error.h"
+#include "octomotion/planner/model/collision_backend.h"
+#include "octomotion/planner/model/collision_model.h"
+
+namespace octomotion {
+
+class OctreeBackend final : public CollisionBackend {
+ public:
+  struct Scratch final : BackendScratch {
+    CheckScratch check;
+  };
+
+  // Throws InvalidArgument for a null model.
+  OctreeBackend(std::shared_ptr<const OctreeCollisionModel> model, CheckerPath path);
+
+  std::unique_ptr<BackendScratch> makeBackendScratch() const override;
+
+  bool inCollision(const double* q, std::size_t q_size, const Eigen::Isometry3d& X_WB,
+                   BackendScratch& scratch) const override {
+    return model_->inCollision(q, q_size, X_WB, path_, scratchOf(scratch).check);
+  }
+  bool environmentInCollision(const double* q, std::size_t q_size, const Eigen::Isometry3d& X_WB,
+                              BackendScratch& scratch) const override {
+    CheckScratch& check = pose(q, q_size, X_WB, scratch);
+    return model_->environmentInCollision(path_, check);
+  }
+  bool selfInCollision(const double* q, std::size_t q_size, const Eigen::Isometry3d& X_WB,
+                       BackendScratch& scratch) const override {
+    CheckScratch& check = pose(q, q_size, X_WB, scratch);
+    return model_->selfInCollision(path_, check);
+  }
+  // OctreeCollisionModel::clearanceLowerBound.
+  double clearance(BackendScratch& scratch) const override {
+    return model_->clearanceLowerBound(scratchOf(scratch).check);
+  }
+  ClearanceBound clearanceBound() const override { return ClearanceBound::kLowerBound; }
+
+  const RobotModel& robot() const override { return model_->robot(); }
+  std::uint64_t id() const override { return model_->id(); }  // scratch depends on the model only
+  CheckerKind kind() const override;
+
+  // The scratch behind one made by makeBackendScratch (InvalidArgument for another backend's).
+  Scratch& scratchOf(BackendScratch& scratch) const {
+    if (scratch.owner != model_->id()) throwForeignScratch();
+    return static_cast<Scratch&>(scratch);
+  }
+
+  const OctreeCollisionModel& model() const { return *model_; }
+  const std::shared_ptr<const OctreeCollisionModel>& sharedModel() const { return model_; }
+  CheckerPath path() const { return path_; }
+
+ private:
+  [[noreturn]] static void throwForeignScratch();
+  // Forward kinematics into the scratch, as OctreeCollisionModel::inCollision does.
+  CheckScratch& pose(const double* q, std::size_t q_size, const Eigen::Isometry3d& X_WB,
+                     BackendScratch& scratch) const {
+    CheckScratch& check = scratchOf(scratch).check;
+    const RobotModel& robot = model_->robot();
+    robot.forwardKinematics(q, q_size, check.robot,
+                            robot.isFreeFlying() ? X_WB : model_->baseMount());
+    return check;
+  }
+
+  std::shared_ptr<const OctreeCollisionModel> model_;
+  CheckerPath path_;
+};
+
+}  // namespace octomotion
