@@ -34,8 +34,8 @@ namespace detail {
 struct CollisionModelParts;
 }  // namespace detail
 
-// (a) the mission's path: moveTree from the source tree, then the parallel traversal;
-// (b) the fused query: both at once, without materialising the moved tree.
+// kMoveTree: moveTree places the source tree on the target's grid, then the parallel traversal
+// tests the two trees; kFused: both at once, without materialising the moved tree.
 enum class CheckerPath { kMoveTree, kFused };
 CheckerPath checkerPathFromName(const std::string& name);  // "octree" | "octree-fused"
 
@@ -48,14 +48,12 @@ CheckerPath checkerPathFromName(const std::string& name);  // "octree" | "octree
 //   else kPairs. Both give exactly the same answers (tests/planner/self_broadphase_test.cpp).
 enum class SelfBroadPhase { kAuto, kPairs, kNObjectsOctree };
 const char* selfBroadPhaseName(SelfBroadPhase strategy);
-// Measured with bench/planner_selfcollision_bench.cpp (docs/planner.md, "Self-collision broad
-// phase"): from 20 links the broad phase beats the all-pairs loop in every run (20 links: 1.05 vs
-// 1.29 us, 100 links: 9.8 vs 36 us per check); at 16 they tie, at 6 the loop is 3x faster.
+// From this many self links the broad phase's box tests cost less than the all-pairs loop's
+// sphere tests. Measured by bench/planner_selfcollision_bench.cpp.
 inline constexpr int kSelfBroadPhaseAutoLinks = 20;
-// Leaf capacity N of the self-collision broad phase: unlimited, i.e. one leaf and the octree's
-// vectorised all-pairs box kernel (report §1.4). Subdividing (N = 8, 16, 64) never paid off up to
-// 100 links: with uniform random states every link jumps each check, so re-inserting costs more
-// than the box tests it saves (100 links: N = 16 24.2 us, N = 64 16.6 us, unlimited 9.8 us).
+// Leaf capacity N of the self-collision broad phase: unlimited, one leaf and the octree's
+// vectorised all-pairs box kernel: links jump at every check, so re-inserting them into smaller
+// leaves costs more than the box tests it saves. Measured by bench/planner_selfcollision_bench.cpp.
 inline constexpr std::uint32_t kSelfBroadPhaseLeafCapacity = broadphase::NObjectsOctree::kUnlimited;
 
 // Which links the environment half of a check sends to the environment tree (docs/planner.md,
@@ -63,15 +61,16 @@ inline constexpr std::uint32_t kSelfBroadPhaseLeafCapacity = broadphase::NObject
 // black voxels; kObjectBoxes: those whose sphere meets some object's own box (a loop over the
 // objects' boxes, so scattered objects no longer make every link test the tree); kAuto:
 // kObjectBoxes for 2 ... kObjectBoxesMaxObjects objects. The tree stays one merged octree either
-// way: per-object trees lost at every count from 50 objects on (bench/planner_environment_bench).
+// way (per-object trees cost more per check).
 enum class EnvironmentPreTest { kAuto, kEnvironmentBox, kObjectBoxes };
-// Measured: object boxes win up to 100 objects (10: 0.07 vs 1.5 us, 100: 1.7 vs 3.1 us per
-// check), tie at 250 and lose at 500 (4.6 vs 3.2 us).
+// Up to this many objects the loop over their boxes costs less than the tree queries it spares.
+// Measured by bench/planner_environment_bench.cpp.
 inline constexpr std::size_t kObjectBoxesMaxObjects = 128;
 
 // The environment tree is built on universes whose origin is the lowest corner of the
 // environment the robot can reach, or 1 .. kOriginShifts - 1 voxels below it, and the one with
-// the fewest nodes is kept (collision_model.cpp, step 5).
+// the fewest nodes is kept: which faces fall on the boundaries of large cells depends on the
+// shift. Reported by CollisionModelReport::environment (octomotion info).
 inline constexpr int kOriginShifts = 4;
 
 // How clearanceLowerBound finds each clearance sphere's nearest obstacle:
@@ -89,8 +88,8 @@ std::uint64_t nextModelId();
 // voxel unless CollisionModelOptions::link_resolution says otherwise. A link voxel's margin adds
 // to the environment's, so finer link trees halve the false positives at the same environment
 // resolution and, being tighter, make the checks faster too (fewer false contacts to descend);
-// they cost build time and memory, which are small next to the environment's (bookshelf 5 mm:
-// 0.25 s and 1.7 MB against 0.04 s and 0.7 MB at 1; docs/trade-off.md, "Finer link trees").
+// they cost build time and memory, which stay small next to the environment's. Measured by
+// bench/planner_check_breakdown_bench.cpp.
 inline constexpr double kDefaultLinkResolutionRatio = 0.25;
 
 // The voxel sizes of a model's link trees, for the environment queries and for the self pairs,
@@ -113,8 +112,8 @@ struct CollisionModelOptions {
   std::optional<double> link_resolution;
   // Source-tree voxel size for the self-collision pairs; default: link_resolution when that is
   // set, else resolution (finer self trees cost more than they save on robots that self-collide
-  // often, such as octo6; docs/trade-off.md). When it differs from link_resolution, each link
-  // in a self pair keeps a second tree used only against the other links.
+  // often). When it differs from link_resolution, each link in a self pair keeps a second tree
+  // used only against the other links.
   std::optional<double> self_link_resolution;
   Rounding rounding = Rounding::kConservative;
   // Fixed-base robots: the root link's pose. Free-flying robots: ignored.
@@ -142,8 +141,8 @@ struct CollisionModelOptions {
   // use conservative trees as their inside/outside oracle). The tolerance is the widest change
   // of the pair's distance within a finest cell: the band around contact left to the octree
   // test. 3-variable tables need far more cells than the budget to certify near contacts. Off
-  // by default: classifying octo6's five tables costs ~20 s of CPU per model (in parallel: 10.5 s
-  // on 2 cores; octo7's one table 0.06 s).
+  // by default: classifying the tables takes seconds of CPU per model (on all cores; measured by
+  // bench/planner_self_pair_tables_bench.cpp).
   bool self_pair_tables = false;
   double self_pair_table_tolerance = 5e-4;        // metres, > 0
   std::size_t self_pair_table_max_cells = 60000;  // FCL classifications per pair
@@ -187,6 +186,9 @@ struct LinkReport {
 // Joint states sampled at build time to order the environment half's links (arms only).
 inline constexpr int kEnvironmentOrderSamples = 512;
 
+// Least share of a self pair's joint space whose states reach the tree test for the pair to get
+// a joint-space table (CollisionModelOptions::self_pair_tables): below it the table's build
+// costs more than the tree tests it spares.
 inline constexpr double kSelfPairTableMinShare = 0.01;
 
 struct SelfPairTableReport {
