@@ -7,9 +7,10 @@
 // their self pairs with the N-objects octree broad phase (SelfBroadPhase), scenes with scattered
 // objects pre-test links against the objects' boxes (EnvironmentPreTest), and clearance uses
 // point octrees of the environment's black leaves (ClearanceMethod): docs/planner.md.
+// The model's parts (environment, link models, self-collision, clearance) are private to the
+// library (planner/src/model/internal/); this header declares what users need.
 #pragma once
 
-#include <array>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -18,24 +19,23 @@
 
 #include <Eigen/Geometry>
 
+// The broad phase's leaf capacity N (CollisionModelOptions::self_broad_phase_leaf_capacity) is
+// in its terms (NObjectsOctree::kUnlimited); the scratch keeps the octree itself opaque.
 #include "octomotion/broadphase/n_objects_octree.h"
-#include "octomotion/motion/box_overlap.h"
 #include "octomotion/motion/collides.h"
-#include "octomotion/motion/pose.h"
-#include "octomotion/motion/primitive_contact.h"
 #include "octomotion/octree/octree.h"
 #include "octomotion/octree/rounding.h"
-#include "octomotion/planner/model/joint_space_table.h"
 #include "octomotion/planner/robot/robot_model.h"
 #include "octomotion/planner/scene/environment_geometry.h"
-#include "octomotion/pointcloud/point_octree.h"
 
 namespace octomotion {
 
-struct TriangleMesh;
+namespace detail {
+struct CollisionModelParts;
+}  // namespace detail
 
-// (a) the mission's path: moveTree from the source tree, then the parallel traversal;
-// (b) the fused query: both at once, without materialising the moved tree.
+// kMoveTree: moveTree places the source tree on the target's grid, then the parallel traversal
+// tests the two trees; kFused: both at once, without materialising the moved tree.
 enum class CheckerPath { kMoveTree, kFused };
 
 // How selfInCollision finds the link pairs worth a tree-vs-tree test:
@@ -47,14 +47,12 @@ enum class CheckerPath { kMoveTree, kFused };
 //   else kPairs. Both give exactly the same answers (tests/planner/self_broadphase_test.cpp).
 enum class SelfBroadPhase { kAuto, kPairs, kNObjectsOctree };
 const char* selfBroadPhaseName(SelfBroadPhase strategy);
-// Measured with bench/planner_selfcollision_bench.cpp (docs/planner.md, "Self-collision broad
-// phase"): from 20 links the broad phase beats the all-pairs loop in every run (20 links: 1.05 vs
-// 1.29 us, 100 links: 9.8 vs 36 us per check); at 16 they tie, at 6 the loop is 3x faster.
+// From this many self links the broad phase's box tests cost less than the all-pairs loop's
+// sphere tests. Measured by bench/planner_selfcollision_bench.cpp.
 inline constexpr int kSelfBroadPhaseAutoLinks = 20;
-// Leaf capacity N of the self-collision broad phase: unlimited, i.e. one leaf and the octree's
-// vectorised all-pairs box kernel (report §1.4). Subdividing (N = 8, 16, 64) never paid off up to
-// 100 links: with uniform random states every link jumps each check, so re-inserting costs more
-// than the box tests it saves (100 links: N = 16 24.2 us, N = 64 16.6 us, unlimited 9.8 us).
+// Leaf capacity N of the self-collision broad phase: unlimited, one leaf and the octree's
+// vectorised all-pairs box kernel: links jump at every check, so re-inserting them into smaller
+// leaves costs more than the box tests it saves. Measured by bench/planner_selfcollision_bench.cpp.
 inline constexpr std::uint32_t kSelfBroadPhaseLeafCapacity = broadphase::NObjectsOctree::kUnlimited;
 
 // Which links the environment half of a check sends to the environment tree (docs/planner.md,
@@ -62,15 +60,16 @@ inline constexpr std::uint32_t kSelfBroadPhaseLeafCapacity = broadphase::NObject
 // black voxels; kObjectBoxes: those whose sphere meets some object's own box (a loop over the
 // objects' boxes, so scattered objects no longer make every link test the tree); kAuto:
 // kObjectBoxes for 2 ... kObjectBoxesMaxObjects objects. The tree stays one merged octree either
-// way: per-object trees lost at every count from 50 objects on (bench/planner_environment_bench).
+// way (per-object trees cost more per check).
 enum class EnvironmentPreTest { kAuto, kEnvironmentBox, kObjectBoxes };
-// Measured: object boxes win up to 100 objects (10: 0.07 vs 1.5 us, 100: 1.7 vs 3.1 us per
-// check), tie at 250 and lose at 500 (4.6 vs 3.2 us).
+// Up to this many objects the loop over their boxes costs less than the tree queries it spares.
+// Measured by bench/planner_environment_bench.cpp.
 inline constexpr std::size_t kObjectBoxesMaxObjects = 128;
 
 // The environment tree is built on universes whose origin is the lowest corner of the
 // environment the robot can reach, or 1 .. kOriginShifts - 1 voxels below it, and the one with
-// the fewest nodes is kept (collision_model.cpp, step 5).
+// the fewest nodes is kept: which faces fall on the boundaries of large cells depends on the
+// shift. Reported by CollisionModelReport::environment (octomotion info).
 inline constexpr int kOriginShifts = 4;
 
 // How clearanceLowerBound finds each clearance sphere's nearest obstacle:
@@ -88,8 +87,8 @@ std::uint64_t nextModelId();
 // voxel unless CollisionModelOptions::link_resolution says otherwise. A link voxel's margin adds
 // to the environment's, so finer link trees halve the false positives at the same environment
 // resolution and, being tighter, make the checks faster too (fewer false contacts to descend);
-// they cost build time and memory, which are small next to the environment's (bookshelf 5 mm:
-// 0.25 s and 1.7 MB against 0.04 s and 0.7 MB at 1; docs/trade-off.md, "Finer link trees").
+// they cost build time and memory, which stay small next to the environment's. Measured by
+// bench/planner_check_breakdown_bench.cpp.
 inline constexpr double kDefaultLinkResolutionRatio = 0.25;
 
 // The voxel sizes of a model's link trees, for the environment queries and for the self pairs,
@@ -112,8 +111,8 @@ struct CollisionModelOptions {
   std::optional<double> link_resolution;
   // Source-tree voxel size for the self-collision pairs; default: link_resolution when that is
   // set, else resolution (finer self trees cost more than they save on robots that self-collide
-  // often, such as octo6; docs/trade-off.md). When it differs from link_resolution, each link
-  // in a self pair keeps a second tree used only against the other links.
+  // often). When it differs from link_resolution, each link in a self pair keeps a second tree
+  // used only against the other links.
   std::optional<double> self_link_resolution;
   Rounding rounding = Rounding::kConservative;
   // Fixed-base robots: the root link's pose. Free-flying robots: ignored.
@@ -141,8 +140,8 @@ struct CollisionModelOptions {
   // use conservative trees as their inside/outside oracle). The tolerance is the widest change
   // of the pair's distance within a finest cell: the band around contact left to the octree
   // test. 3-variable tables need far more cells than the budget to certify near contacts. Off
-  // by default: classifying octo6's five tables costs ~20 s of CPU per model (in parallel: 10.5 s
-  // on 2 cores; octo7's one table 0.06 s).
+  // by default: classifying the tables takes seconds of CPU per model (on all cores; measured by
+  // bench/planner_self_pair_tables_bench.cpp).
   bool self_pair_tables = false;
   double self_pair_table_tolerance = 5e-4;        // metres, > 0
   std::size_t self_pair_table_max_cells = 60000;  // FCL classifications per pair
@@ -186,6 +185,9 @@ struct LinkReport {
 // Joint states sampled at build time to order the environment half's links (arms only).
 inline constexpr int kEnvironmentOrderSamples = 512;
 
+// Least share of a self pair's joint space whose states reach the tree test for the pair to get
+// a joint-space table (CollisionModelOptions::self_pair_tables): below it the table's build
+// costs more than the tree tests it spares.
 inline constexpr double kSelfPairTableMinShare = 0.01;
 
 struct SelfPairTableReport {
@@ -229,26 +231,51 @@ struct CollisionModelReport {
   std::string toString() const;  // the human-readable "what was modelled" summary
 };
 
+// The self-collision broad phase's octree in a CheckScratch (kNObjectsOctree; empty otherwise),
+// whose links move with every check: opaque here, made once per thread by makeScratch (or by the
+// first check that needs it).
+class SelfBroadPhaseScratch {
+ public:
+  SelfBroadPhaseScratch() noexcept;
+  SelfBroadPhaseScratch(const SelfBroadPhaseScratch& other);
+  SelfBroadPhaseScratch(SelfBroadPhaseScratch&& other) noexcept;
+  SelfBroadPhaseScratch& operator=(const SelfBroadPhaseScratch& other);
+  SelfBroadPhaseScratch& operator=(SelfBroadPhaseScratch&& other) noexcept;
+  ~SelfBroadPhaseScratch();
+
+  bool has_value() const { return octree_ != nullptr; }
+  broadphase::NObjectsOctree* get() const { return octree_.get(); }
+  void reset(broadphase::NObjectsOctree octree);
+
+ private:
+  std::unique_ptr<broadphase::NObjectsOctree> octree_;
+};
+
 // Per-thread scratch for queries: FK results, the fused query's buffers and (kNObjectsOctree)
-// the self-collision broad phase's octree, whose links move with every check. One per thread.
+// the self-collision broad phase's octree. One per thread.
 struct CheckScratch {
   RobotData robot;
   CollisionScratch fused;
-  std::optional<broadphase::NObjectsOctree> self_broad_phase;
+  SelfBroadPhaseScratch self_broad_phase;
   std::vector<Eigen::Vector3d> centres_W;  // per modelled link: bounding-sphere centre in W
   std::uint64_t owner = 0;                 // id() of the model it was made for
 };
 
+// The constant model of one scene, shared by every thread; its parts are built once by the
+// constructor (planner/src/model/internal/collision_model_builder.h).
 class OctreeCollisionModel {
  public:
   // Builds the environment tree on a universe fitted to what the robot can reach (parts of the
   // environment it can never reach are not modelled) and one source tree per link.
   OctreeCollisionModel(RobotModel robot, const EnvironmentGeometry& environment,
                        const CollisionModelOptions& options);
+  OctreeCollisionModel(OctreeCollisionModel&& other) noexcept;
+  OctreeCollisionModel& operator=(OctreeCollisionModel&& other) noexcept;
+  ~OctreeCollisionModel();
 
   const RobotModel& robot() const { return robot_; }
-  const Octree& environment() const { return environment_; }
-  const WorldGrid& grid() const { return environment_.grid(); }
+  const Octree& environment() const;
+  const WorldGrid& grid() const;
   Rounding rounding() const { return options_.rounding; }
   const CollisionModelReport& report() const { return report_; }
   const Eigen::Isometry3d& baseMount() const { return options_.X_WB; }
@@ -288,202 +315,14 @@ class OctreeCollisionModel {
     // The self pairs' tree when it has its own resolution (self_link_resolution), else null.
     const Octree* self_source = nullptr;
   };
-  std::vector<LinkSourceTree> linkSourceTrees() const {
-    std::vector<LinkSourceTree> trees;
-    trees.reserve(links_.size());
-    for (const LinkTree& lt : links_) {
-      trees.push_back(
-          {lt.link, &lt.voxels.source, lt.self_voxels ? &lt.self_voxels->source : nullptr});
-    }
-    return trees;
-  }
+  std::vector<LinkSourceTree> linkSourceTrees() const;
 
  private:
-  // A link's black voxels at one resolution, in its own frame L, prepared for queries.
-  struct LinkVoxels {
-    Octree source{WorldGrid(Eigen::Vector3d::Zero(), 1.0, 1)};
-    std::unique_ptr<const MovableSource> movable;        // the source prepared for the fused query
-    Eigen::Vector3d center_L = Eigen::Vector3d::Zero();  // bounding sphere of the black voxels
-    double radius = 0;
-    Eigen::Vector3d half_L = Eigen::Vector3d::Zero();  // their box: centre center_L, half-sides
-    double source_diagonal = 0;                        // of one source voxel (metres)
-    // Boxes inside the black voxels (CollisionModelOptions::core_boxes), shrunk by kSolidShrink.
-    struct CoreBox {
-      Eigen::Vector3d centre_L, half_L;
-    };
-    std::vector<CoreBox> core_boxes;
-  };
-  // A box inside a primitive obstacle (the box itself, a ball's inscribed cube, a cylinder's
-  // square prism), shrunk by kSolidShrink: every voxel it overlaps is black in the environment.
-  struct SolidBox {
-    Eigen::Vector3d centre_W, half;
-    Eigen::Matrix3d R_OW;      // world to the box's axes
-    Eigen::Vector3d extent_W;  // half sides of its world AABB
-  };
-  // Boxes of a certain contact are shrunk by this share of the larger voxel size: a point of
-  // both then has a ball about it in both boxes, so the target voxel holding it overlaps the
-  // obstacle and a moved link voxel by far more than the colour rules' ties (1e-6 voxel).
-  static constexpr double kSolidShrink = 1e-3;
-  // One of the link's core boxes overlaps a solid box: the link's moved tree and the
-  // environment share a black voxel.
-  bool certainContact(const LinkVoxels& v, const Eigen::Isometry3d& X_WL) const;
-  // CollisionModelOptions::exact_primitives: a primitive obstacle in its own frame P, and its
-  // world AABB (EnvironmentGeometry::Item::bounds_W: centre_W, half sides extent_W). A link is
-  // tested against it when the world box of the link's black voxels grown by kExactReachVoxels
-  // link voxels meets that AABB: a link voxel's bounding sphere reaches (√3 - 1)/2 of a voxel
-  // beyond the voxel.
-  struct ExactPrimitive {
-    PrimitiveShape shape;
-    Eigen::Isometry3d X_PW;
-    Eigen::Vector3d centre_W, extent_W;
-  };
-  static constexpr double kExactReachVoxels = 1.0;
-  // A black voxel of the link's environment tree meets one of exact_primitives_.
-  bool leavesMeetPrimitives(const LinkVoxels& v, const Eigen::Isometry3d& X_WL) const;
-  struct LinkTree {
-    int link = -1;
-    LinkVoxels voxels;  // tested against the environment (and the other links, unless below)
-    // At self_link_resolution when it differs from link_resolution: the self pairs' margin is
-    // set by the link voxels alone, so finer trees here remove self false positives without
-    // deepening the environment queries.
-    std::unique_ptr<const LinkVoxels> self_voxels;
-    const LinkVoxels& forSelf() const { return self_voxels ? *self_voxels : voxels; }
-    bool touches_environment = true;         // false: cannot reach the modelled environment
-    std::vector<Eigen::Vector4d> spheres_L;  // coarse cover of the black voxels (clearance)
-  };
-
-  static LinkVoxels voxelizeLink(const Link& link,
-                                 const std::vector<const TriangleMesh*>& element_mesh,
-                                 Eigen::AlignedBox3d box_L, double resolution,
-                                 const CollisionModelOptions& options, bool for_self_pairs);
-  // What the environment pre-test reads of a link, in one flat record per link that can touch
-  // the environment (a rejected link touches nothing else).
-  struct EnvironmentLinkTest {
-    Eigen::Vector3d center_L;  // the link box's centre and half sides (LinkVoxels)
-    Eigen::Vector3d half_L;
-    double reach_squared = 0;         // (bounding radius + one environment voxel diagonal)^2
-    double origin_reach_squared = 0;  // (that reach + |center_L|)^2, about the link's origin
-    int link = -1;                    // robot link index
-    std::size_t slot = 0;             // in links_
-  };
-  EnvironmentLinkTest environmentTest(std::size_t slot) const;
-  // The link's bounding sphere, grown by a voxel diagonal, reaches `box` (inline: the first
-  // stage of the environment pre-test, run for every link of every check).
-  static bool sphereMeetsBox(const EnvironmentLinkTest& t, const Eigen::Isometry3d& X_WL,
-                             const Eigen::AlignedBox3d& box);
-  // For a link whose bounding sphere reaches the environment's box (sphereMeetsBox): false when its
-  // oriented box meets neither the environment's box nor (kObjectBoxes) any object's box, so it
-  // cannot meet an environment voxel.
-  bool linkNearEnvironment(const EnvironmentLinkTest& t, const Eigen::Isometry3d& X_WL) const;
-  // linkNearEnvironment, then the link's query against the environment tree.
-  bool linkHitsEnvironment(const EnvironmentLinkTest& t, const Eigen::Isometry3d& X_WL,
-                           CheckerPath path, CollisionScratch& fused) const;
-  // The self-pair test in two stages, cheapest first. The bounding spheres (centres in W from
-  // placeCentres) are close enough for B's voxels placed on A's grid to reach A when their
-  // centres are within spheresReach of each other.
-  static double spheresReach(const LinkVoxels& a, const LinkVoxels& b) {
-    return a.radius + b.radius + a.source_diagonal;
-  }
-  // The boxes of A's and B's black voxels (B's rotation in A: R_AB) overlap.
-  static bool boxesMeet(const LinkVoxels& a, const Eigen::Isometry3d& X_WA,
-                        const Eigen::Matrix3d& R_AB, const LinkVoxels& b,
-                        const Eigen::Vector3d& cb_W) {
-    return boxesOverlap(a.center_L, a.half_L, R_AB,
-                        X_WA.linear().transpose() * (cb_W - X_WA.translation()), b.half_L,
-                        kMotionTieTolerance * a.source.grid().voxelSize());
-  }
-  // linksHit, for pairs whose spheres meet: the oriented boxes, then the trees.
-  bool linksHit(const LinkVoxels& a, const Eigen::Isometry3d& X_WA, const LinkVoxels& b,
-                const Eigen::Isometry3d& X_WB, const Eigen::Vector3d& cb_W, CheckerPath path,
-                CollisionScratch& fused) const;
-  // Self pair `pair` (index into pairs_): the spheres (centres from placeCentres), then
-  // pairStagesHit.
-  bool pairHits(std::size_t pair, CheckerPath path, CheckScratch& scratch) const {
-    const SelfPair& p = pairs_[pair];
-    return spheresMeet(p, scratch.centres_W[p.a], scratch.centres_W[p.b]) &&
-           pairStagesHit(p, path, scratch);
-  }
-  // scratch.centres_W[slot]: every modelled link's self-collision sphere centre.
-  void placeCentres(CheckScratch& scratch) const;
-  bool selfPairsInCollision(CheckerPath path, CheckScratch& scratch) const;
-  bool selfBroadPhaseInCollision(CheckerPath path, CheckScratch& scratch) const;
-  broadphase::NObjectsOctree makeSelfBroadPhase() const;
-
   std::uint64_t id_;
   RobotModel robot_;
   CollisionModelOptions options_;
-  Octree environment_;
-  // The environment's entirely black cells as a bit grid (conservative rounding; else null):
-  // the fused query tries a few points of each link in it before any traversal.
-  std::unique_ptr<const BlackCellGrid> environment_cells_;
-  // Lower bounds on the distance to the environment per cell: the fused query drops the pieces
-  // of a link that are clear of it before descending.
-  std::unique_ptr<const ClearanceGrid> environment_clearance_;
-  Eigen::AlignedBox3d environment_box_W_;  // world box of the environment's black voxels
-  // kObjectBoxes: each object's box grown by a voxel (so it holds the object's black voxels).
-  std::vector<Eigen::AlignedBox3d> object_boxes_W_;
-  // The same boxes for the pre-test's first three axes, one array per axis (centre, and half
-  // side plus the tie margin), precomputed: most boxes are rejected there.
-  std::array<std::vector<double>, 3> object_centre_W_, object_reach_W_;
-  // A rotated primitive's own box, grown by a voxel diagonal (it holds the object's black
-  // voxels too, and is much tighter than the world box for a tilted bar): tested after the
-  // world box. Parallel to object_boxes_W_; `tilted` false for the others.
-  struct ObjectFrameBox {
-    Eigen::Vector3d centre_W = Eigen::Vector3d::Zero(), half = Eigen::Vector3d::Zero();
-    Eigen::Matrix3d R_OW = Eigen::Matrix3d::Identity();  // world to the object's axes
-    bool tilted = false;
-  };
-  std::vector<ObjectFrameBox> object_frame_boxes_;
-  std::vector<SolidBox> solid_boxes_W_;
-  std::vector<ExactPrimitive> exact_primitives_;
-  // With exact primitives in a scene that also has other objects: their tree (on the
-  // environment's grid) and its grids, queried like the environment tree.
-  struct VoxelObjects {
-    Octree tree;
-    std::unique_ptr<const BlackCellGrid> cells;
-    std::unique_ptr<const ClearanceGrid> clearance;
-  };
-  std::unique_ptr<const VoxelObjects> other_objects_;
-  std::vector<LinkTree> links_;  // modelled links only
-  // The links that can touch the environment, in the order environmentInCollision tests them:
-  // most often hit first (LinkReport::environment_hit_share), ties in model order. Free states
-  // test them all either way; colliding ones stop sooner.
-  std::vector<EnvironmentLinkTest> environment_tests_;
-  void orderEnvironmentLinks();
-  std::vector<const LinkVoxels*> self_voxels_;  // per slot: links_[slot].forSelf(), one load
-  std::vector<int> link_slot_;                  // robot link index -> index in links_, or -1
-  struct SelfPair {
-    std::size_t a, b;                        // slots in links_
-    double reach_squared = 0;                // spheresReach(a, b)^2
-    const JointSpaceTable* table = nullptr;  // in pair_tables_, or none
-  };
-  // The pair's bounding spheres, centred at ca_W and cb_W, are within reach of each other.
-  static bool spheresMeet(const SelfPair& p, const Eigen::Vector3d& ca_W,
-                          const Eigen::Vector3d& cb_W) {
-    return (ca_W - cb_W).squaredNorm() <= p.reach_squared;
-  }
-  // A pair whose spheres meet: its joint-space table when it has one, then the boxes and trees
-  // of the self trees.
-  bool pairStagesHit(const SelfPair& p, CheckerPath path, CheckScratch& scratch) const;
-  // Share of the pair's joint space (its variables `vars`, 256 samples) whose states reach the
-  // tree test.
-  double treeTestShare(const SelfPair& pair, const std::vector<int>& vars) const;
-  std::vector<SelfPair> pairs_;
-  std::vector<std::unique_ptr<const JointSpaceTable>> pair_tables_;
-  // Self broad phase: object id i is links_[self_links_[i]] (increasing slots, so a < b ids keep
-  // the pairs' order); self_pair_of_[a * self_links_.size() + b] for ids a < b: the index in
-  // pairs_ of a checked pair, or -1.
-  // Clearance (kPointOctree): the environment's black leaves of one level, as cube centres.
-  struct ClearanceLevel {
-    double half_diagonal = 0;  // of that level's cubes (metres)
-    pointcloud::PointOctree centres;
-  };
-  std::vector<ClearanceLevel> clearance_levels_;
-  double clearance_float_slack_ = 0;  // covers float rounding of centres and distances
-  std::vector<int> self_links_;
-  std::vector<std::int32_t> self_pair_of_;
-  Eigen::AlignedBox3d self_root_box_W_;  // the broad phase's root: everything links can reach
   CollisionModelReport report_;
+  std::unique_ptr<const detail::CollisionModelParts> parts_;
 };
 
 }  // namespace octomotion
