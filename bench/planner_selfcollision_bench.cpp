@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "octomotion/broadphase/n_objects_octree.h"
 #include "octomotion/planner/model/collision_model.h"
 #include "snake_robot.h"
 

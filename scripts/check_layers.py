@@ -3,9 +3,10 @@
 
 Every source and header of octree/, planner/ and tools/ belongs to one layer; a file may include
 its own layer and the layers below it, never one above (the FCL references in reference/
-implement the collision-backend interface of model/; the octree model never sees them). Also: no header that `cmake --install` ships includes OMPL
-outside ompl/, and no library file is longer than MAX_LINES.
-Exit status 1 with one line per violation.
+implement the collision-backend interface of model/; the octree model never sees them). Also:
+nothing below ompl/ includes OMPL, and no library file is longer than MAX_LINES.
+Exit status 1 with one line per violation. Usage: check_layers.py [ROOT] or --self-test (the
+check against a made-up tree with known violations).
 """
 import os
 import re
@@ -55,7 +56,9 @@ def layer_of_include(name, including_file):
     return None
 
 
-def main():
+def violations_in(root):
+    global ROOT
+    ROOT = root
     violations = []
     for top in ("octree", "planner", "tools"):
         for dirpath, _, files in os.walk(os.path.join(ROOT, top)):
@@ -81,6 +84,50 @@ def main():
                         continue
                     if RANKS[target] > RANKS[layer] or RANKS[target] == RANKS[layer]:
                         violations.append(f"{rel}: layer {layer} includes {name} (layer {target})")
+    return violations
+
+
+def self_test():
+    """The check finds what it must on a made-up tree, and nothing on a clean one."""
+    import tempfile
+
+    def write(root, rel, text):
+        path = os.path.join(root, rel)
+        os.makedirs(os.path.dirname(path), exist_ok=True)
+        with open(path, "w", encoding="utf-8") as f:
+            f.write(text)
+
+    with tempfile.TemporaryDirectory() as root:
+        inc = "planner/include/octomotion/planner/"
+        write(root, inc + "robot/robot.h", '#include "octomotion/octree/octree.h"\n')
+        write(root, inc + "model/model.h", '#include "octomotion/planner/robot/robot.h"\n')
+        write(root, inc + "ompl/glue.h", '#include <ompl/base/State.h>\n#include "octomotion/planner/model/model.h"\n')
+        write(root, "planner/src/model/internal/part.h", "#pragma once\n")
+        write(root, "planner/src/model/model.cpp", '#include "internal/part.h"\n')
+        write(root, "tools/cli/main.cpp", '#include "octomotion/planner/ompl/glue.h"\n')
+        clean = violations_in(root)
+        if clean:
+            print("self-test: a clean tree was reported:", *clean, sep="\n  ")
+            return 1
+        write(root, inc + "model/bad.h", '#include "octomotion/planner/ompl/glue.h"\n')
+        write(root, "planner/src/robot/bad.cpp", '#include <ompl/base/State.h>\n#include "../model/internal/part.h"\n')
+        write(root, "octree/src/long.cpp", "//\n" * (MAX_LINES + 1))
+        found = violations_in(root)
+        expected = ["model/bad.h: layer model includes octomotion/planner/ompl/glue.h",
+                    "robot/bad.cpp: layer robot includes OMPL", "robot/bad.cpp: layer robot includes ../model",
+                    "octree/src/long.cpp: "]
+        missing = [e for e in expected if not any(e in v for v in found)]
+        if missing or len(found) != len(expected):
+            print("self-test: expected", expected, "found", found, sep="\n  ")
+            return 1
+    print("self-test: ok")
+    return 0
+
+
+def main():
+    if len(sys.argv) > 1 and sys.argv[1] == "--self-test":
+        return self_test()
+    violations = violations_in(ROOT)
     for v in violations:
         print(v)
     if violations:

@@ -18,7 +18,7 @@ build=${OCTOMOTION_BUILD_DIR:-$root/build}
 packages=(build-essential cmake ninja-build pkg-config clang-format
   libeigen3-dev libompl-dev libfcl-dev liburdfdom-dev libtinyxml-dev libassimp-dev liboctomap-dev
   libboost-serialization-dev libboost-filesystem-dev libboost-system-dev
-  libyaml-cpp-dev libnanoflann-dev libgtest-dev libgmock-dev libbenchmark-dev gnuplot-nox)
+  libyaml-cpp-dev libnanoflann-dev libgtest-dev libgmock-dev libbenchmark-dev gnuplot-nox python3)
 # The test suite also drives the web viewer (viewer/) in headless Chromium through Node.js.
 if [[ $mode == test ]]; then
   packages+=(chromium)

@@ -3,6 +3,10 @@
 #include "octomotion/motion/move_tree.h"
 #include "octomotion/octree/traversal.h"
 
+static_assert(octomotion::kSelfBroadPhaseLeafCapacity ==
+                  octomotion::broadphase::NObjectsOctree::kUnlimited,
+              "the self broad phase keeps one leaf");
+
 namespace octomotion {
 
 SelfBroadPhaseScratch::SelfBroadPhaseScratch() noexcept = default;

@@ -12,6 +12,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -21,12 +22,15 @@
 
 // The broad phase's leaf capacity N (CollisionModelOptions::self_broad_phase_leaf_capacity) is
 // in its terms (NObjectsOctree::kUnlimited); the scratch keeps the octree itself opaque.
-#include "octomotion/broadphase/n_objects_octree.h"
 #include "octomotion/motion/collides.h"
 #include "octomotion/octree/octree.h"
 #include "octomotion/octree/rounding.h"
 #include "octomotion/planner/robot/robot_model.h"
 #include "octomotion/planner/scene/environment_geometry.h"
+
+namespace octomotion::broadphase {
+class NObjectsOctree;  // broadphase/n_objects_octree.h
+}  // namespace octomotion::broadphase
 
 namespace octomotion {
 
@@ -53,7 +57,9 @@ inline constexpr int kSelfBroadPhaseAutoLinks = 20;
 // Leaf capacity N of the self-collision broad phase: unlimited, one leaf and the octree's
 // vectorised all-pairs box kernel: links jump at every check, so re-inserting them into smaller
 // leaves costs more than the box tests it saves. Measured by bench/planner_selfcollision_bench.cpp.
-inline constexpr std::uint32_t kSelfBroadPhaseLeafCapacity = broadphase::NObjectsOctree::kUnlimited;
+// (broadphase::NObjectsOctree::kUnlimited.)
+inline constexpr std::uint32_t kSelfBroadPhaseLeafCapacity =
+    std::numeric_limits<std::uint32_t>::max();
 
 // Which links the environment half of a check sends to the environment tree (docs/planner.md,
 // "Many environment objects"): kEnvironmentBox: those whose bounding sphere meets the box of all
