@@ -17,7 +17,7 @@
 #include "joint_states.h"
 #include "octomotion/error.h"
 #include "octomotion/planner/ompl/planning_scene.h"
-#include "octomotion/planner/reference/fcl_checker.h"
+#include "octomotion/planner/reference/fcl_collision_model.h"
 
 namespace {
 

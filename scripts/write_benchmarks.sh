@@ -6,7 +6,7 @@
 #   scripts/write_benchmarks.sh [--build DIR] [SECTION ...]     (no SECTION: all of them)
 # Sections: differential motion octree builders translate primitive_contact planner_environment
 #           planner_selfcollision planner_clearance pointoctree self_pair_tables check_breakdown
-#           plan_split broadphase tradeoff
+#           plan_split validity_checker broadphase tradeoff
 # Environment: OCTOMOTION_DIFFERENTIAL_STATES (default 1000000).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -18,7 +18,7 @@ fi
 out=$root/docs/benchmarks.md
 all=(differential motion octree builders translate primitive_contact planner_environment
   planner_selfcollision planner_clearance pointoctree self_pair_tables check_breakdown plan_split
-  broadphase tradeoff)
+  validity_checker broadphase tradeoff)
 selected=("$@")
 ((${#selected[@]})) || selected=("${all[@]}")
 
@@ -47,6 +47,8 @@ add check_breakdown "Where a check's time goes, cage at 5 mm (planner_check_brea
   planner_check_breakdown_bench "robots/scenes/cage.yaml 0.005"
 add plan_split "Where a plan's time goes, bookshelf at 1 cm (planner_plan_split_bench)" \
   planner_plan_split_bench "robots/scenes/bookshelf.yaml 0.01"
+add validity_checker "The OMPL validity checker per scene and checker (planner_validity_checker_bench)" \
+  planner_validity_checker_bench "$gbench"
 add broadphase "N-objects octree broad phase (broadphase_bench)" broadphase_bench ""
 add tradeoff "Speed/accuracy trade study (tradeoff_bench; docs/trade-off.md)" tradeoff_bench \
   "--out-dir $build/tradeoff-results"

@@ -15,7 +15,7 @@
 #include "octomotion/planner/model/collision_model.h"
 #include "octomotion/planner/model/joint_space_table.h"
 #include "octomotion/planner/ompl/planning_scene.h"
-#include "octomotion/planner/reference/fcl_checker.h"
+#include "octomotion/planner/reference/fcl_collision_model.h"
 
 namespace octomotion {
 namespace {

@@ -15,7 +15,7 @@
 #include "octomotion/planner/model/collision_backend.h"
 #include "octomotion/planner/model/octree_backend.h"
 #include "octomotion/planner/ompl/planning_scene.h"
-#include "octomotion/planner/reference/fcl_checker.h"
+#include "octomotion/planner/reference/fcl_collision_model.h"
 
 namespace octomotion::validation {
 

@@ -6,7 +6,7 @@
 #include <ompl/base/spaces/RealVectorStateSpace.h>
 
 #include "octomotion/planner/ompl/validity_checker.h"
-#include "octomotion/planner/reference/fcl_octomap_checker.h"
+#include "octomotion/planner/reference/fcl_octomap_collision_model.h"
 #include "validation_common.h"
 
 namespace octomotion::validation {

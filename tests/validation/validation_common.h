@@ -16,7 +16,7 @@
 
 #include "fcl_reference.h"
 #include "octomotion/planner/ompl/planning_scene.h"
-#include "octomotion/planner/reference/fcl_checker.h"
+#include "octomotion/planner/reference/fcl_collision_model.h"
 
 namespace octomotion::validation {
 

@@ -15,8 +15,8 @@
 #include "octomotion/octree/mesh.h"
 #include "octomotion/planner/ompl/state_space.h"
 #include "octomotion/planner/ompl/validity_checker.h"
-#include "octomotion/planner/reference/fcl_checker.h"
-#include "octomotion/planner/reference/fcl_octomap_checker.h"
+#include "octomotion/planner/reference/fcl_collision_model.h"
+#include "octomotion/planner/reference/fcl_octomap_collision_model.h"
 #include "study_format.h"
 #include "trade_study_internal.h"
 

@@ -1,9 +1,10 @@
 // One interface over the collision checkers a scene can plan with: the octree model (through
-// OctreeBackend, model/octree_backend.h) and the two FCL references (reference/fcl_checker.h,
-// reference/fcl_octomap_checker.h), so that consumers (the OMPL checker, tests, benches) write one
-// measurement path. A backend is constant and shared by every thread; each thread queries it with
-// its own scratch. The concrete backends are final, so code templated on them
-// (ValidityChecker<Backend>, ompl/validity_checker.h) calls them without a virtual call.
+// OctreeBackend, model/octree_backend.h) and the two FCL references
+// (reference/fcl_collision_model.h, reference/fcl_octomap_collision_model.h), so that consumers
+// (the OMPL checker, tests, benches) write one measurement path. A backend is constant and shared
+// by every thread; each thread queries it with its own scratch. The concrete backends are final, so
+// code templated on them (ValidityChecker<Backend>, ompl/validity_checker.h) calls them without a
+// virtual call.
 #pragma once
 
 #include <cstddef>

@@ -99,7 +99,7 @@ inline constexpr double kDefaultLinkResolutionRatio = 0.25;
 
 // The voxel sizes of a model's link trees, for the environment queries and for the self pairs,
 // with the defaults of CollisionModelOptions::link_resolution and ::self_link_resolution applied
-// (the one place they are; the trade study resolves its ratios with it at resolution 1).
+// (the one place they are applied).
 struct LinkTreeResolutions {
   double link, self;
 };

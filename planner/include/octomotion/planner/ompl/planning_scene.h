@@ -18,8 +18,8 @@
 #include "octomotion/planner/model/collision_model.h"
 #include "octomotion/planner/ompl/state_space.h"
 #include "octomotion/planner/ompl/validity_checker.h"
-#include "octomotion/planner/reference/fcl_checker.h"
-#include "octomotion/planner/reference/fcl_octomap_checker.h"
+#include "octomotion/planner/reference/fcl_collision_model.h"
+#include "octomotion/planner/reference/fcl_octomap_collision_model.h"
 #include "octomotion/planner/scene/scene.h"
 
 namespace octomotion {
@@ -107,14 +107,14 @@ CheckerPath octreeCheckerPath(CheckerKind kind);
 // the robot moves more than two voxels of `resolution` between the checked states of a motion.
 // `reach`: for arms, half the largest side of the region the robot can reach
 // (CollisionModelReport::reach_W); for free-flying bodies, the robot's diagonal. loadPlanningScene
-// and the trade study's planning both use it.
+// uses it; so should any caller that plans on its own SpaceInformation.
 void boundMotionStep(ompl::base::SpaceInformation& si, const RobotModel& robot, double reach,
                      double resolution);
 
 // What loadPlanningScene reads before it builds any model: the scene with the overrides applied
 // (octree.resolution resolved, auto included; problem.bounds set for free-flying bodies), the
-// robot and the environment. Callers that build their own models (the trade study) start here;
-// it leaves OMPL (and its seed) alone.
+// robot and the environment. Callers that build their own models (several settings of one
+// scene, for instance) start here; it leaves OMPL (and its seed) alone.
 struct SceneInputs {
   SceneSpec spec;
   std::optional<RobotModel> robot;

@@ -24,8 +24,8 @@
 #include "octomotion/planner/model/collision_model.h"
 #include "octomotion/planner/model/octree_backend.h"
 #include "octomotion/planner/ompl/state_space.h"
-#include "octomotion/planner/reference/fcl_checker.h"
-#include "octomotion/planner/reference/fcl_octomap_checker.h"
+#include "octomotion/planner/reference/fcl_collision_model.h"
+#include "octomotion/planner/reference/fcl_octomap_collision_model.h"
 
 namespace octomotion {
 

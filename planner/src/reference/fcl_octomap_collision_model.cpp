@@ -1,4 +1,4 @@
-#include "octomotion/planner/reference/fcl_octomap_checker.h"
+#include "octomotion/planner/reference/fcl_octomap_collision_model.h"
 
 #include <chrono>
 

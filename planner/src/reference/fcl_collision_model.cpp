@@ -1,4 +1,4 @@
-#include "octomotion/planner/reference/fcl_checker.h"
+#include "octomotion/planner/reference/fcl_collision_model.h"
 
 #include <limits>
 
