@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -25,6 +26,9 @@ struct RobotSpec {
   // and shifts the robot so that the mean of its vertices is at its origin.
   bool keep_mesh_root_transform = false;
   bool center_mesh_vertices = false;
+  // robot.pose: where a fixed-base robot's root link is mounted in the world (X_WB); every
+  // checker honours it. Empty: the identity.
+  std::optional<Eigen::Isometry3d> pose;
 };
 
 struct EnvironmentObject {
@@ -36,6 +40,9 @@ struct EnvironmentObject {
   Eigen::Vector3d scale = Eigen::Vector3d::Ones();  // kMesh
   bool keep_mesh_root_transform = true;             // kMesh
   Eigen::Isometry3d X_WO = Eigen::Isometry3d::Identity();
+  // The frame X_WO is given in: empty = the world; otherwise a robot link's name (MoveIt's
+  // frame_id), resolved once the robot is loaded (at its start configuration).
+  std::string frame;
 };
 
 // The validity checker a scene plans with: the octree model's moveTree path or fused query, exact
@@ -66,13 +73,31 @@ struct OctreeSettings {
   std::optional<double> max_surface_voxels;
 };
 
-// A start or goal: a joint vector (arms) or a pose (rigid bodies).
+// A goal given as the pose of one robot link, reached through inverse kinematics.
+struct LinkPoseGoalSpec {
+  std::string link;
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
+  std::optional<Eigen::Quaterniond> orientation;  // empty: any orientation
+  double position_tolerance = 1e-3;                // metres
+  double orientation_tolerance = 1e-2;             // radians
+};
+
+// A start or goal: a joint vector (arms), joint values by name, an SRDF group state, a link pose
+// (goals only) or a pose (rigid bodies).
 struct StateSpec {
-  std::vector<double> joints;
+  std::vector<double> joints;  // the planned variables in order (the group's, or every one)
+  std::vector<std::pair<std::string, double>> named;  // {joint: value}, in file order
+  std::string group_state;                            // an SRDF <group_state> name
+  std::optional<LinkPoseGoalSpec> link_pose;          // goals only
   std::optional<Eigen::Isometry3d> pose;
 };
 
 struct ProblemSpec {
+  // An SRDF group: its joints are planned, every other joint is held (problem.fixed, the start,
+  // else 0 clamped into its limits). Empty: every movable joint is planned.
+  std::string group;
+  std::vector<std::pair<std::string, double>> fixed;  // problem.fixed: {joint: value}
+  std::string moveit_request;  // the MotionPlanRequest YAML the problem came from, if any
   std::optional<StateSpec> start, goal;
   std::optional<Eigen::AlignedBox3d> bounds;  // SE(3) position bounds; empty = inferred
   std::string planner = "RRTConnect";         // an OMPL geometric planner
