@@ -1,11 +1,14 @@
 #include "octomotion/octree/mesh.h"
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstddef>
 #include <cstring>
 #include <fstream>
 #include <string>
 #include <unordered_map>
+#include <unordered_set>
 
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
@@ -69,6 +72,72 @@ struct PositionEqual {
   bool operator()(const Eigen::Vector3d& a, const Eigen::Vector3d& b) const { return a == b; }
 };
 
+// assimp's Collada importer copies memory without end when an <accessor> (or <input>) names a
+// source id that the file does not define (fuzz/known/README.md), so every local reference
+// `source="#id"` must name an element's id. The scan is textual: attributes inside comments
+// count too, which can only refuse more, never let a dangling reference through.
+std::string attributeValue(const std::string& text, std::size_t at) {
+  const std::size_t close = text.find(text[at], at + 1);
+  const std::size_t end = close == std::string::npos ? text.size() : close;
+  return text.substr(at + 1, end - at - 1);
+}
+
+// Offsets just past `name=` followed by a quote, for each attribute `name` preceded by space.
+template <class F>
+void forEachAttribute(const std::string& text, const char* name, F&& f) {
+  const std::size_t n = std::strlen(name);
+  for (std::size_t at = text.find(name); at != std::string::npos; at = text.find(name, at + 1)) {
+    if (at == 0 || !std::isspace(static_cast<unsigned char>(text[at - 1]))) continue;
+    std::size_t q = at + n;
+    while (q < text.size() && std::isspace(static_cast<unsigned char>(text[q]))) ++q;
+    if (q >= text.size() || text[q] != '=') continue;
+    ++q;
+    while (q < text.size() && std::isspace(static_cast<unsigned char>(text[q]))) ++q;
+    if (q >= text.size() || (text[q] != '"' && text[q] != '\'')) continue;
+    f(q);
+  }
+}
+
+void requireLocalSourcesDefined(const std::string& text, const std::string& path) {
+  std::unordered_set<std::string> ids;
+  forEachAttribute(text, "id", [&](std::size_t q) { ids.insert(attributeValue(text, q)); });
+  forEachAttribute(text, "source", [&](std::size_t q) {
+    const std::string value = attributeValue(text, q);
+    if (value.empty() || value[0] != '#') return;
+    if (ids.count(value.substr(1)) != 0) return;
+    std::string shown = value.substr(0, 64);
+    for (char& c : shown) {
+      if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) > 0x7e) c = '?';
+    }
+    const auto line =
+        1 + std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(q), '\n');
+    throw FileError(path, "source=\"" + shown + "\" (line " + std::to_string(line) +
+                              ") names no element of the file");
+  });
+}
+
+// assimp's Collada importer loops without end on a primitive's index list (<p>, <vcount>, <v>,
+// <h>, <int_array>) holding anything but integers, so those lists are checked first.
+void requireIntegerIndexLists(const std::string& text, const std::string& path) {
+  for (const char* tag : {"<p", "<vcount", "<v", "<h", "<int_array"}) {
+    const std::size_t n = std::strlen(tag);
+    for (std::size_t at = text.find(tag); at != std::string::npos; at = text.find(tag, at + 1)) {
+      const char after = at + n < text.size() ? text[at + n] : '\0';
+      if (after != '>' && !std::isspace(static_cast<unsigned char>(after))) continue;
+      const std::size_t open_end = text.find('>', at);
+      if (open_end == std::string::npos || text[open_end - 1] == '/') continue;
+      for (std::size_t i = open_end + 1; i < text.size() && text[i] != '<'; ++i) {
+        const unsigned char c = static_cast<unsigned char>(text[i]);
+        if (std::isdigit(c) || std::isspace(c) || c == '-' || c == '+') continue;
+        const auto line =
+            1 + std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(i), '\n');
+        throw FileError(path, std::string(tag + 1) + " (line " + std::to_string(line) +
+                                  ") holds a character that is not part of an integer");
+      }
+    }
+  }
+}
+
 // assimp's Collada (and other XML) importers recurse once per nested element, so a deeply
 // nested file overflows the stack: XML mesh files are pre-scanned for their nesting depth.
 void requireShallowXml(const std::string& path, std::uintmax_t max_bytes) {
@@ -82,7 +151,12 @@ void requireShallowXml(const std::string& path, std::uintmax_t max_bytes) {
   if (std::strncmp(head, "\xEF\xBB\xBF", 3) == 0) i = 3;  // a UTF-8 byte-order mark
   while (i < sizeof head && std::isspace(static_cast<unsigned char>(head[i]))) ++i;
   if (i < sizeof head && head[i] == '<') {
-    requireXmlDepth(readWholeFile(path, "mesh file", max_bytes), path);
+    const std::string text = readWholeFile(path, "mesh file", max_bytes);
+    requireXmlDepth(text, path);
+    if (text.find("<COLLADA") != std::string::npos) {
+      requireLocalSourcesDefined(text, path);
+      requireIntegerIndexLists(text, path);
+    }
   }
 }
 

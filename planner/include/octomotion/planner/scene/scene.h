@@ -78,8 +78,8 @@ struct LinkPoseGoalSpec {
   std::string link;
   Eigen::Vector3d position = Eigen::Vector3d::Zero();
   std::optional<Eigen::Quaterniond> orientation;  // empty: any orientation
-  double position_tolerance = 1e-3;                // metres
-  double orientation_tolerance = 1e-2;             // radians
+  double position_tolerance = 1e-3;               // metres
+  double orientation_tolerance = 1e-2;            // radians
 };
 
 // A start or goal: a joint vector (arms), joint values by name, an SRDF group state, a link pose
