@@ -221,7 +221,8 @@ void expandMoveItScene(const YamlReader& r, const YAML::Node& item, const std::s
   try {
     objects = loadMoveItScene(file);
   } catch (const Error& e) {
-    r.fail(field + ".moveit_scene", item["moveit_scene"], e.what());
+    // The message names the MoveIt file, its field and line already.
+    throw FileError(r.path(), field + ".moveit_scene: " + e.what());
   }
   for (EnvironmentObject& obj : objects) scene.environment.push_back(std::move(obj));
 }
@@ -342,7 +343,7 @@ void parseMoveItRequestKey(const YamlReader& r, const YAML::Node& node, SceneSpe
   try {
     request = loadMoveItRequest(p.moveit_request);
   } catch (const Error& e) {
-    r.fail("problem.moveit_request", key, e.what());
+    throw FileError(r.path(), std::string("problem.moveit_request: ") + e.what());
   }
   p.group = request.group;
   p.start = request.start;

@@ -111,7 +111,7 @@ void resolveSceneFrames(SceneSpec& spec, const RobotModel& robot) {
     const int link = robot.findLink(frame);
     if (link < 0) {
       throw FileError(spec.path, what + ": frame '" + frame + "' is not a link of " + robot.name() +
-                                     " (give a link name, or none for the world)");
+                                     " (a frame is one of the robot's links)");
     }
     return data.linkPose(link);
   };
