@@ -193,9 +193,17 @@ world:
       primitives: [{type: cylinder, dimensions: [0.5, 0.25]}]
       primitive_poses: [{position: [0, 0, 1], orientation: [0, 0, 0, 1]}]
     - {id: b, operation: REMOVE}
+    - id: c
+      pose: {position: [0, 0, 0], orientation: [0, 0, 0, 0]}
+      primitives: [{type: sphere, dimensions: [0.1]}]
+      primitive_poses: [{position: [0, 1, 0], orientation: {x: 0, y: 0, z: 0, w: 0}}]
 )",
                                                                   "mem.yaml");
-  ASSERT_EQ(objects.size(), 2u);
+  ASSERT_EQ(objects.size(), 3u);
+  // An orientation never filled in (all zeros) is the identity, as MoveIt reads it.
+  EXPECT_EQ(objects[2].name, "c");
+  EXPECT_TRUE(objects[2].X_WO.linear().isIdentity(0));
+  EXPECT_EQ(objects[2].X_WO.translation(), Eigen::Vector3d(0, 1, 0));
   EXPECT_EQ(objects[0].name, "a/0");
   EXPECT_EQ(objects[1].name, "a/1");
   EXPECT_TRUE(objects[0].robot_root_frame);

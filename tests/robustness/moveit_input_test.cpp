@@ -77,10 +77,6 @@ TEST(MoveItInput, BadPlanningScenesNameTheField) {
        sceneWith(o + "      primitives: [{type: sphere, dimensions: [1]}]\n"
                      "      primitive_poses: [{position: [0, 0, 0]}]\n"),
        "world.collision_objects[1].primitive_poses[0].orientation", "missing"},
-      {"zero quaternion",
-       sceneWith(o + "      primitives: [{type: sphere, dimensions: [1]}]\n"
-                     "      primitive_poses: [{position: [0, 0, 0], orientation: [0, 0, 0, 0]}]\n"),
-       "world.collision_objects[1].primitive_poses[0].orientation", "zero length"},
       {"quaternion of 3",
        sceneWith(o + "      primitives: [{type: sphere, dimensions: [1]}]\n"
                      "      primitive_poses: [{position: [0, 0, 0], "

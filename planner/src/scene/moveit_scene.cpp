@@ -102,7 +102,8 @@ std::vector<EnvironmentObject> shapesOf(const MessageYaml& r, const YAML::Node& 
   }
   // Noetic and later: shape poses are relative to the object's pose; before: absolute.
   Eigen::Isometry3d X_FO = Eigen::Isometry3d::Identity();
-  if (const YAML::Node pose = r.child(node, field, "pose")) X_FO = r.pose(pose, field + ".pose");
+  if (const YAML::Node pose = r.child(node, field, "pose"))
+    X_FO = r.pose(pose, field + ".pose", true);
   const std::vector<YAML::Node> planes = r.list(r.child(node, field, "planes"), field + ".planes");
   if (!planes.empty()) {
     r.fail(field + ".planes", node["planes"],
@@ -110,7 +111,7 @@ std::vector<EnvironmentObject> shapesOf(const MessageYaml& r, const YAML::Node& 
   }
   std::vector<EnvironmentObject> shapes;
   auto add = [&](EnvironmentObject obj, const YAML::Node& pose, const std::string& pose_field) {
-    obj.X_WO = X_FO * r.pose(pose, pose_field);
+    obj.X_WO = X_FO * r.pose(pose, pose_field, true);
     obj.frame = frame;
     obj.robot_root_frame = frame.empty();
     shapes.push_back(std::move(obj));

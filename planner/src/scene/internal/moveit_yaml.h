@@ -17,6 +17,7 @@
 #include <Eigen/Geometry>
 
 #include "octomotion/error.h"
+#include "octomotion/input_limits.h"
 
 namespace octomotion::detail {
 
@@ -127,20 +128,27 @@ class MessageYaml {
   Eigen::Vector3d vector3(const YAML::Node& node, const std::string& field) const {
     return Eigen::Vector3d(components<3>(node, field, {"x", "y", "z"}).data());
   }
-  // geometry_msgs/Quaternion: [x, y, z, w] or {x, y, z, w}, normalised; a zero one is refused.
-  Eigen::Quaterniond quaternion(const YAML::Node& node, const std::string& field) const {
+  // geometry_msgs/Quaternion: [x, y, z, w] or {x, y, z, w}, normalised (after scaling by its
+  // largest component, so huge ones do not overflow). All zeros is refused, unless
+  // `zero_is_identity`: MoveIt reads an all-zero orientation in a collision object as the
+  // identity (a message whose pose was never filled in has one).
+  Eigen::Quaterniond quaternion(const YAML::Node& node, const std::string& field,
+                                bool zero_is_identity = false) const {
     const std::array<double, 4> c = components<4>(node, field, {"x", "y", "z", "w"});
     const Eigen::Vector4d v(c[0], c[1], c[2], c[3]);
-    const double n = v.norm();
-    if (!(n > 1e-12) || !std::isfinite(n)) fail(field, node, "quaternion of zero length");
-    return Eigen::Quaterniond(c[3] / n, c[0] / n, c[1] / n, c[2] / n);
+    if (zero_is_identity && v.isZero(0)) return Eigen::Quaterniond::Identity();
+    const auto unit = scaledUnitVector(v);
+    if (!unit) fail(field, node, "quaternion of zero length");
+    return Eigen::Quaterniond((*unit)[3], (*unit)[0], (*unit)[1], (*unit)[2]);
   }
   // geometry_msgs/Pose: position and orientation, both required.
-  Eigen::Isometry3d pose(const YAML::Node& node, const std::string& field) const {
+  Eigen::Isometry3d pose(const YAML::Node& node, const std::string& field,
+                         bool zero_is_identity = false) const {
     allowOnly(node, field, {"position", "orientation"});
     Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
     X.translation() = vector3(required(node, field, "position"), join(field, "position"));
-    X.linear() = quaternion(required(node, field, "orientation"), join(field, "orientation"))
+    X.linear() = quaternion(required(node, field, "orientation"), join(field, "orientation"),
+                            zero_is_identity)
                      .toRotationMatrix();
     return X;
   }
