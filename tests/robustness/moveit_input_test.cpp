@@ -200,7 +200,7 @@ TEST_F(SceneFiles, ErrorsInMoveItFilesNameTheSceneAndTheFile) {
   expectRejected(request, "problem.moveit_request");
 }
 
-TEST_F(SceneFiles, UnknownFramesAndInconsistentMimicsAreRefused) {
+TEST_F(SceneFiles, FramesAreLinksOrTheModelFrameAndMimicsMustAgree) {
   expectRejected(write("frame.yaml", octo7() + "environment:\n  - {name: cup, frame: gripper, "
                                                "sphere: {radius: 0.1}}\n"),
                  "environment object 'cup': frame 'gripper' is not a link");
@@ -208,8 +208,18 @@ TEST_F(SceneFiles, UnknownFramesAndInconsistentMimicsAreRefused) {
         "world:\n  collision_objects:\n    - id: cup\n      header: {frame_id: world}\n"
         "      primitives: [{type: sphere, dimensions: [0.1]}]\n"
         "      primitive_poses: [{position: [0, 0, 0], orientation: [0, 0, 0, 1]}]\n");
-  expectRejected(write("moveit_frame.yaml", octo7() + "environment:\n  - moveit_scene: ps.yaml\n"),
-                 "frame 'world' is not a link");
+  const std::string moveit_frame =
+      write("moveit_frame.yaml", octo7() + "environment:\n  - moveit_scene: ps.yaml\n");
+  expectRejected(moveit_frame, "frame 'world' is not a link");
+  // With an SRDF whose virtual joint hangs the robot from 'world', that is the root's frame.
+  write("v.srdf",
+        "<robot name=\"octo7\"><virtual_joint name=\"v\" type=\"floating\" "
+        "parent_frame=\"world\" child_link=\"link0\"/></robot>\n");
+  const SceneInputs in = loadSceneInputs(
+      write("virtual.yaml", octo7() + "  srdf: v.srdf\n  pose: {xyz: [1, 2, 3]}\nenvironment:\n"
+                                      "  - moveit_scene: ps.yaml\n"));
+  ASSERT_EQ(in.spec.environment.size(), 1u);
+  EXPECT_EQ(in.spec.environment[0].X_WO.translation(), Eigen::Vector3d(1, 2, 3));
   write("r.yaml",
         "group_name: arm\nstart_state: {joint_state: {name: [finger_joint1, finger_joint2], "
         "position: [0.02, 0.03]}}\ngoal_constraints: [{joint_constraints: [{joint_name: joint1, "

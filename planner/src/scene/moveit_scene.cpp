@@ -102,8 +102,9 @@ std::vector<EnvironmentObject> shapesOf(const MessageYaml& r, const YAML::Node& 
   }
   // Noetic and later: shape poses are relative to the object's pose; before: absolute.
   Eigen::Isometry3d X_FO = Eigen::Isometry3d::Identity();
-  if (const YAML::Node pose = r.child(node, field, "pose"))
+  if (const YAML::Node pose = r.child(node, field, "pose")) {
     X_FO = r.pose(pose, field + ".pose", true);
+  }
   const std::vector<YAML::Node> planes = r.list(r.child(node, field, "planes"), field + ".planes");
   if (!planes.empty()) {
     r.fail(field + ".planes", node["planes"],

@@ -205,8 +205,9 @@ void parseRobot(const YamlReader& r, const YAML::Node& node, SceneSpec& scene) {
   if (node["center_vertices"]) robot.center_mesh_vertices = node["center_vertices"].as<bool>();
   if (node["pose"]) {
     // A rigid body's pose is what the planner varies; a mount would only confuse it.
-    if (!robot.mesh.empty())
+    if (!robot.mesh.empty()) {
       r.fail("robot.pose", node["pose"], "a free-flying mesh robot has no mount");
+    }
     robot.pose = r.pose(node["pose"], "robot.pose");
   }
 }

@@ -5,7 +5,10 @@
 #include <optional>
 #include <sstream>
 
+#include <tinyxml.h>
+
 #include "octomotion/error.h"
+#include "octomotion/input_limits.h"
 
 namespace octomotion {
 
@@ -15,6 +18,22 @@ std::string number(double v) {
   std::ostringstream s;
   s << v;
   return s.str();
+}
+
+// The parent frames of the SRDF's virtual joints: MoveIt's model frame when the robot has one
+// ("world" in most MoveIt configurations), which a fixed-base robot's mount puts at its root.
+std::vector<std::string> virtualJointParents(const std::string& srdf_path) {
+  std::vector<std::string> frames;
+  if (srdf_path.empty()) return frames;
+  TiXmlDocument doc;
+  doc.Parse(readWholeFile(srdf_path, "SRDF file", kMaxXmlFileBytes).c_str());
+  const TiXmlElement* robot = doc.Error() ? nullptr : doc.RootElement();
+  if (robot == nullptr) return frames;  // the SRDF loader has reported it already
+  for (const TiXmlElement* e = robot->FirstChildElement("virtual_joint"); e != nullptr;
+       e = e->NextSiblingElement("virtual_joint")) {
+    if (const char* parent = e->Attribute("parent_frame")) frames.emplace_back(parent);
+  }
+  return frames;
 }
 
 bool needsLinkPoses(const SceneSpec& spec) {
@@ -104,14 +123,20 @@ void resolveSceneFrames(SceneSpec& spec, const RobotModel& robot) {
     const std::vector<double> q = frameConfiguration(spec, robot);
     robot.forwardKinematics(q.data(), q.size(), data, X_WB);
   }
+  std::optional<std::vector<std::string>> model_frames;  // read on first need
   // The world pose of a frame; `what` names its user in errors.
   auto frameToWorld = [&](const std::string& frame, bool root,
                           const std::string& what) -> Eigen::Isometry3d {
     if (frame.empty()) return root ? X_WB : Eigen::Isometry3d::Identity();
     const int link = robot.findLink(frame);
     if (link < 0) {
+      if (!model_frames) model_frames = virtualJointParents(spec.robot.srdf);
+      if (std::find(model_frames->begin(), model_frames->end(), frame) != model_frames->end()) {
+        return X_WB;
+      }
       throw FileError(spec.path, what + ": frame '" + frame + "' is not a link of " + robot.name() +
-                                     " (a frame is one of the robot's links)");
+                                     " (a frame is one of the robot's links, or the parent "
+                                     "frame of the SRDF's virtual joint)");
     }
     return data.linkPose(link);
   };

@@ -21,7 +21,8 @@ std::vector<double> frameConfiguration(const SceneSpec& spec, const RobotModel& 
 // drops mimic joints from problem.start's named values once they are found to agree with their
 // masters (multiplier * master + offset, within 1e-9; a MoveIt start state lists them). Throws
 // FileError naming the object or goal and the frame when the frame is no link of the robot, or
-// the joint when a mimic value disagrees.
+// the joint when a mimic value disagrees. The parent frame of the SRDF's virtual joint (MoveIt's
+// model frame, often "world") is the root link's frame, at the mount.
 void resolveSceneFrames(SceneSpec& spec, const RobotModel& robot);
 
 }  // namespace octomotion
