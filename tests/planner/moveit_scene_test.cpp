@@ -353,6 +353,31 @@ TEST_F(MbmProblems, EveryProblemIsRead) {
   }
 }
 
+// A scene file of one problem, as docs/examples/moveit_box.yaml writes it: the objects, the
+// request's problem with the mimic finger dropped, and a mount that carries the objects along.
+TEST_F(MbmProblems, ASceneFileReadsAProblem) {
+  if (!fs::exists(kPanda + "/panda.urdf")) GTEST_SKIP() << "no Panda at " << kPanda;
+  const Problem& p = problems_.front();
+  const std::string robot =
+      "robot:\n  urdf: " + kPanda + "/panda.urdf\n  srdf: " + kPanda + "/panda.srdf\n";
+  const std::string rest = "environment:\n  - moveit_scene: " + p.scene +
+                           "\nproblem:\n  moveit_request: " + p.request + "\n";
+  const SceneInputs plain = loadSceneInputs(dir_->file("plain.yaml", robot + rest));
+  const SceneInputs mounted = loadSceneInputs(dir_->file(
+      "mounted.yaml", robot + "  pose: {xyz: [0.5, -1, 0.75], rpy: [0.1, 0, 2]}\n" + rest));
+  EXPECT_EQ(plain.spec.problem.group, "panda_arm");
+  EXPECT_EQ(plain.spec.problem.start->named.size(), 8u);  // panda_finger_joint2 mimics joint1
+  EXPECT_EQ(plain.spec.problem.goal->named.size(), 7u);
+  ASSERT_EQ(plain.spec.environment.size(), loadMoveItScene(p.scene).size());
+  ASSERT_EQ(mounted.spec.environment.size(), plain.spec.environment.size());
+  const Eigen::Isometry3d& M = *mounted.spec.robot.pose;
+  for (std::size_t i = 0; i < plain.spec.environment.size(); ++i) {
+    EXPECT_LT(maxDifference(mounted.spec.environment[i].X_WO, M * plain.spec.environment[i].X_WO),
+              1e-12);
+  }
+  EXPECT_EQ(plain.environment->size(), plain.spec.environment.size());
+}
+
 // The data's README: at fingers 0.065 none of 105 problems checked had a start in collision
 // (VAMP counts 699 of the 700 valid). Fifteen problems of each set, with exact FCL.
 TEST_F(MbmProblems, StartsAreCollisionFreeForFcl) {
