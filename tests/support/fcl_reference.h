@@ -113,7 +113,8 @@ inline std::shared_ptr<const FclCollisionModel> exactReference(const PlanningSce
   }
   return std::make_shared<const FclCollisionModel>(
       scene.model->robot(), EnvironmentGeometry::load(objects),
-      scene.spec.robot.keep_mesh_root_transform, scene.spec.robot.center_mesh_vertices);
+      scene.spec.robot.keep_mesh_root_transform, scene.spec.robot.center_mesh_vertices,
+      scene.model->baseMount());
 }
 
 // The octree model's voxel sizes, from which the margins of docs/validation.md follow.

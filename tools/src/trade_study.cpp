@@ -299,7 +299,8 @@ TradeStudyResult runTradeStudy(const TradeStudyOptions& options) {
   // The exact reference first: its answers classify the states.
   auto t0 = Clock::now();
   auto fcl = std::make_shared<const FclCollisionModel>(
-      robot, environment, spec.robot.keep_mesh_root_transform, spec.robot.center_mesh_vertices);
+      robot, environment, spec.robot.keep_mesh_root_transform, spec.robot.center_mesh_vertices,
+      spec.robot.pose.value_or(Eigen::Isometry3d::Identity()));
   const double fcl_build = seconds(t0, Clock::now());
   const Measurement fcl_m = measureFclLike(*fcl, states, states.count);
   // FCL's full check again, paired with every setting's timed passes (Measurement::speedup).
@@ -340,7 +341,8 @@ TradeStudyResult runTradeStudy(const TradeStudyOptions& options) {
       try {
         octomap = std::make_shared<const FclOctomapCollisionModel>(
             robot, environment, resolution, spec.robot.keep_mesh_root_transform,
-            spec.robot.center_mesh_vertices);
+            spec.robot.center_mesh_vertices,
+            spec.robot.pose.value_or(Eigen::Isometry3d::Identity()));
         const Measurement m = measureFclLike(*octomap, states, states.count, fcl_check);
         CheckRow row;
         row.scene = spec.name;
@@ -380,6 +382,7 @@ TradeStudyResult runTradeStudy(const TradeStudyOptions& options) {
       mo.exact_primitives = spec.octree.exact_primitives && rounding == Rounding::kConservative;
       if (spec.octree.max_surface_voxels) mo.max_surface_voxels = *spec.octree.max_surface_voxels;
       mo.base_position_bounds = scene.bounds;
+      if (spec.robot.pose) mo.X_WB = *spec.robot.pose;
       mo.keep_mesh_root_transform = spec.robot.keep_mesh_root_transform;
       mo.center_mesh_vertices = spec.robot.center_mesh_vertices;
       mo.warnings = warnings;

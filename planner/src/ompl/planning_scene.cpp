@@ -32,6 +32,7 @@
 #include "octomotion/planner/ompl/state_space.h"
 #include "octomotion/planner/ompl/validity_checker.h"
 #include "octomotion/planner/robot/collision_meshes.h"
+#include "octomotion/planner/scene/scene_frames.h"
 
 namespace octomotion {
 
@@ -232,6 +233,9 @@ SceneInputs loadSceneInputs(const std::string& scene_path, const SceneOverrides&
     }
   }
 
+  // Objects and goals given in the robot's frames, placed at the start (mount included).
+  resolveSceneFrames(spec, *robot);
+
   // The environment, and the region the problem lives in.
   // Errors in the files a scene names also name the scene.
   inputs.environment = [&] {
@@ -302,6 +306,7 @@ PlanningScene loadPlanningScene(const std::string& scene_path, const SceneOverri
   options.rounding = spec.octree.rounding;
   if (spec.octree.max_surface_voxels) options.max_surface_voxels = *spec.octree.max_surface_voxels;
   options.base_position_bounds = spec.problem.bounds;
+  if (spec.robot.pose) options.X_WB = *spec.robot.pose;
   options.keep_mesh_root_transform = spec.robot.keep_mesh_root_transform;
   options.center_mesh_vertices = spec.robot.center_mesh_vertices;
   options.warnings = warnings;
@@ -323,12 +328,12 @@ PlanningScene loadPlanningScene(const std::string& scene_path, const SceneOverri
     const double resolution = options.resolution;
     scene.fcl_model = LazyModel<FclCollisionModel>([octree_model, objects, keep, center] {
       return std::make_shared<const FclCollisionModel>(octree_model->robot(), *objects, keep,
-                                                       center);
+                                                       center, octree_model->baseMount());
     });
     scene.fcl_octomap_model =
         LazyModel<FclOctomapCollisionModel>([octree_model, objects, keep, center, resolution] {
-          return std::make_shared<const FclOctomapCollisionModel>(octree_model->robot(), *objects,
-                                                                  resolution, keep, center);
+          return std::make_shared<const FclOctomapCollisionModel>(
+              octree_model->robot(), *objects, resolution, keep, center, octree_model->baseMount());
         });
   }
 

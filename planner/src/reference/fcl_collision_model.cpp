@@ -29,9 +29,11 @@ struct FclCollisionModel::Scratch final : BackendScratch {
 
 FclCollisionModel::FclCollisionModel(const RobotModel& robot,
                                      const EnvironmentGeometry& environment,
-                                     bool keep_mesh_root_transform, bool center_mesh_vertices)
+                                     bool keep_mesh_root_transform, bool center_mesh_vertices,
+                                     const Eigen::Isometry3d& mount)
     : id_(nextModelId()),
       robot_(robot),
+      mount_(mount),
       geometry_(
           std::make_unique<Geometry>(robot_, keep_mesh_root_transform, center_mesh_vertices)) {
   std::vector<fcl::CollisionObjectd*> objects;
@@ -115,7 +117,7 @@ double FclCollisionModel::clearance(BackendScratch& scratch) const {
 
 void FclCollisionModel::setConfiguration(const double* q, std::size_t q_size,
                                          const Eigen::Isometry3d& X_WB, Scratch& s) const {
-  geometry_->robot.pose(robot_, q, q_size, X_WB, s.robot);
+  geometry_->robot.pose(robot_, q, q_size, robot_.isFreeFlying() ? X_WB : mount_, s.robot);
 }
 
 namespace {

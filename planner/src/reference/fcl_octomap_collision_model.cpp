@@ -27,9 +27,11 @@ struct FclOctomapCollisionModel::Scratch final : BackendScratch {
 FclOctomapCollisionModel::FclOctomapCollisionModel(const RobotModel& robot,
                                                    const EnvironmentGeometry& environment,
                                                    double resolution, bool keep_mesh_root_transform,
-                                                   bool center_mesh_vertices)
+                                                   bool center_mesh_vertices,
+                                                   const Eigen::Isometry3d& mount)
     : id_(nextModelId()),
       robot_(robot),
+      mount_(mount),
       resolution_(resolution),
       geometry_(
           std::make_unique<Geometry>(robot_, keep_mesh_root_transform, center_mesh_vertices)) {
@@ -103,7 +105,7 @@ bool FclOctomapCollisionModel::selfInCollision(const double* q, std::size_t q_si
 
 void FclOctomapCollisionModel::setConfiguration(const double* q, std::size_t q_size,
                                                 const Eigen::Isometry3d& X_WB, Scratch& s) const {
-  geometry_->robot.pose(robot_, q, q_size, X_WB, s.robot);
+  geometry_->robot.pose(robot_, q, q_size, robot_.isFreeFlying() ? X_WB : mount_, s.robot);
 }
 
 bool FclOctomapCollisionModel::environmentInCollision(Scratch& s) const {

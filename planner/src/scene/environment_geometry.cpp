@@ -65,16 +65,26 @@ EnvironmentGeometry EnvironmentGeometry::load(const std::vector<EnvironmentObjec
     if (!spec.X_WO.matrix().allFinite()) {
       throw InvalidArgument(spec.name + ": pose is not finite");
     }
+    if (!spec.frame.empty() || spec.robot_root_frame) {
+      // Placing it needs the robot: resolveSceneFrames (scene_frames.h) first.
+      throw InvalidArgument(spec.name + ": pose is relative to the robot's frame '" +
+                            (spec.frame.empty() ? std::string("root") : spec.frame) +
+                            "', not resolved to the world");
+    }
     switch (spec.kind) {
       case EnvironmentObject::Kind::kPrimitive:
         validate(spec.primitive);
         item.bounds_W = boundingBox(spec.primitive, spec.X_WO);
         break;
       case EnvironmentObject::Kind::kMesh: {
-        MeshLoadOptions options;
-        options.keep_root_transform = spec.keep_mesh_root_transform;
-        options.scale = spec.scale;
-        item.mesh = loadMesh(spec.file, options);
+        if (spec.mesh) {
+          item.mesh = *spec.mesh;  // given inline (a MoveIt mesh)
+        } else {
+          MeshLoadOptions options;
+          options.keep_root_transform = spec.keep_mesh_root_transform;
+          options.scale = spec.scale;
+          item.mesh = loadMesh(spec.file, options);
+        }
         item.bounds_W = boxOfPoints(item.mesh.vertices, spec.X_WO);
         break;
       }

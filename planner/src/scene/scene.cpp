@@ -13,6 +13,7 @@
 
 #include "octomotion/error.h"
 #include "octomotion/input_limits.h"
+#include "octomotion/planner/scene/moveit_scene.h"
 
 namespace octomotion {
 
@@ -175,8 +176,9 @@ StateSpec stateFrom(const YamlReader& r, const YAML::Node& node, const std::stri
 }
 
 void parseRobot(const YamlReader& r, const YAML::Node& node, SceneSpec& scene) {
-  r.allowOnly(node, "robot",
-              {"urdf", "srdf", "mesh", "package_path", "keep_root_transform", "center_vertices"});
+  r.allowOnly(
+      node, "robot",
+      {"urdf", "srdf", "mesh", "package_path", "keep_root_transform", "center_vertices", "pose"});
   RobotSpec& robot = scene.robot;
   if (node["urdf"]) robot.urdf = resolvePath(r.path(), r.string(node["urdf"], "robot.urdf"));
   if (node["mesh"]) robot.mesh = resolvePath(r.path(), r.string(node["mesh"], "robot.mesh"));
@@ -201,6 +203,29 @@ void parseRobot(const YamlReader& r, const YAML::Node& node, SceneSpec& scene) {
     robot.keep_mesh_root_transform = node["keep_root_transform"].as<bool>();
   }
   if (node["center_vertices"]) robot.center_mesh_vertices = node["center_vertices"].as<bool>();
+  if (node["pose"]) {
+    // A rigid body's pose is what the planner varies; a mount would only confuse it.
+    if (!robot.mesh.empty()) {
+      r.fail("robot.pose", node["pose"], "a free-flying mesh robot has no mount");
+    }
+    robot.pose = r.pose(node["pose"], "robot.pose");
+  }
+}
+
+// {moveit_scene: file}: every collision object of a MoveIt PlanningScene (moveit_scene.h).
+void expandMoveItScene(const YamlReader& r, const YAML::Node& item, const std::string& field,
+                       SceneSpec& scene) {
+  r.allowOnly(item, field, {"moveit_scene"});
+  const std::string file =
+      resolvePath(r.path(), r.string(item["moveit_scene"], field + ".moveit_scene"));
+  std::vector<EnvironmentObject> objects;
+  try {
+    objects = loadMoveItScene(file);
+  } catch (const Error& e) {
+    // The message names the MoveIt file, its field and line already.
+    throw FileError(r.path(), field + ".moveit_scene: " + e.what());
+  }
+  for (EnvironmentObject& obj : objects) scene.environment.push_back(std::move(obj));
 }
 
 void parseEnvironment(const YamlReader& r, const YAML::Node& node, SceneSpec& scene) {
@@ -208,11 +233,17 @@ void parseEnvironment(const YamlReader& r, const YAML::Node& node, SceneSpec& sc
   for (std::size_t i = 0; i < node.size(); ++i) {
     const std::string field = "environment[" + std::to_string(i) + "]";
     const YAML::Node item = node[i];
-    r.allowOnly(item, field,
-                {"name", "pose", "box", "sphere", "cylinder", "mesh", "pointcloud", "octomap"});
+    if (item.IsMap() && item["moveit_scene"]) {
+      expandMoveItScene(r, item, field, scene);
+      continue;
+    }
+    r.allowOnly(
+        item, field,
+        {"name", "pose", "frame", "box", "sphere", "cylinder", "mesh", "pointcloud", "octomap"});
     EnvironmentObject obj;
     obj.name = item["name"] ? r.string(item["name"], field + ".name") : field;
     if (item["pose"]) obj.X_WO = r.pose(item["pose"], field + ".pose");
+    if (item["frame"]) obj.frame = r.string(item["frame"], field + ".frame");
     int kinds = 0;
     for (const char* kind : {"box", "sphere", "cylinder"}) {
       if (!item[kind]) continue;
@@ -297,9 +328,35 @@ void parseOctree(const YamlReader& r, const YAML::Node& node, SceneSpec& scene) 
   }
 }
 
-void parseProblem(const YamlReader& r, const YAML::Node& node, SceneSpec& scene) {
-  r.allowOnly(node, "problem", {"start", "goal", "bounds", "planner", "time", "seed"});
+// problem.moveit_request: group, start, goal and time from a MoveIt MotionPlanRequest; the scene's
+// own problem.time wins over allowed_planning_time.
+void parseMoveItRequestKey(const YamlReader& r, const YAML::Node& node, SceneSpec& scene) {
+  const YAML::Node key = node["moveit_request"];
+  for (const char* other : {"group", "start", "goal"}) {
+    if (node[other]) {
+      r.fail(std::string("problem.") + other, node[other],
+             "give either problem.moveit_request or problem." + std::string(other) + ", not both");
+    }
+  }
   ProblemSpec& p = scene.problem;
+  p.moveit_request = resolvePath(r.path(), r.string(key, "problem.moveit_request"));
+  MoveItRequest request;
+  try {
+    request = loadMoveItRequest(p.moveit_request);
+  } catch (const Error& e) {
+    throw FileError(r.path(), std::string("problem.moveit_request: ") + e.what());
+  }
+  p.group = request.group;
+  p.start = request.start;
+  p.goal = request.goal;
+  if (request.time && !node["time"]) p.time = *request.time;
+}
+
+void parseProblem(const YamlReader& r, const YAML::Node& node, SceneSpec& scene) {
+  r.allowOnly(node, "problem",
+              {"start", "goal", "bounds", "planner", "time", "seed", "moveit_request"});
+  ProblemSpec& p = scene.problem;
+  if (node["moveit_request"]) parseMoveItRequestKey(r, node, scene);
   if (node["start"]) p.start = stateFrom(r, node["start"], "problem.start");
   if (node["goal"]) p.goal = stateFrom(r, node["goal"], "problem.goal");
   if (const YAML::Node b = node["bounds"]) {

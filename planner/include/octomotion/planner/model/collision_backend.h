@@ -40,10 +40,10 @@ class CollisionBackend {
   virtual std::unique_ptr<BackendScratch> makeBackendScratch() const = 0;
 
   // Poses the robot at q (joint values in RobotModel::variables() order) and X_WB (the base pose
-  // of a free-flying robot; fixed-base robots: the octree model uses the mount it was built with,
-  // the FCL references this pose) in the scratch, then tests the links against the environment
-  // and the checked self pairs against each other. Throws InvalidArgument for a non-finite input
-  // or a scratch made by another backend.
+  // of a free-flying robot; a fixed-base robot ignores it: every backend uses the mount it was
+  // built with, CollisionModelOptions::X_WB or the references' `mount`) in the scratch, then
+  // tests the links against the environment and the checked self pairs against each other. Throws
+  // InvalidArgument for a non-finite input or a scratch made by another backend.
   virtual bool inCollision(const double* q, std::size_t q_size, const Eigen::Isometry3d& X_WB,
                            BackendScratch& scratch) const = 0;
   // Its two halves, each posing the robot first: the environment only, the self pairs only.

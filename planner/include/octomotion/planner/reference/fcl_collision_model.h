@@ -25,9 +25,11 @@ namespace octomotion {
 
 class FclCollisionModel final : public CollisionBackend {
  public:
-  // Mesh conventions as in CollisionModelOptions.
+  // Mesh conventions as in CollisionModelOptions. `mount`: a fixed-base robot's root link pose
+  // in the world (CollisionModelOptions::X_WB); free-flying robots ignore it.
   FclCollisionModel(const RobotModel& robot, const EnvironmentGeometry& environment,
-                    bool keep_mesh_root_transform = false, bool center_mesh_vertices = false);
+                    bool keep_mesh_root_transform = false, bool center_mesh_vertices = false,
+                    const Eigen::Isometry3d& mount = Eigen::Isometry3d::Identity());
   ~FclCollisionModel() override;
   FclCollisionModel(FclCollisionModel&&) noexcept;
 
@@ -38,7 +40,8 @@ class FclCollisionModel final : public CollisionBackend {
   using ScratchPtr = std::unique_ptr<Scratch, ScratchDeleter>;
   ScratchPtr makeScratch() const;
 
-  // Link poses from q (and X_WB for free-flying robots) into the scratch.
+  // Link poses from q (and X_WB for free-flying robots; fixed-base robots use baseMount()) into
+  // the scratch.
   void setConfiguration(const double* q, std::size_t q_size, const Eigen::Isometry3d& X_WB,
                         Scratch& scratch) const;
   // Environment contacts and checked self pairs at the scratch's configuration.
@@ -73,11 +76,13 @@ class FclCollisionModel final : public CollisionBackend {
   const RobotModel& robot() const override { return robot_; }
   std::uint64_t id() const override { return id_; }  // see OctreeCollisionModel::id
   CheckerKind kind() const override { return CheckerKind::kFcl; }
+  const Eigen::Isometry3d& baseMount() const { return mount_; }
 
  private:
   struct Geometry;
   std::uint64_t id_;
   RobotModel robot_;
+  Eigen::Isometry3d mount_;
   std::unique_ptr<Geometry> geometry_;
 };
 

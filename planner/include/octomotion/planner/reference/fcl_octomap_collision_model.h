@@ -22,11 +22,13 @@ namespace octomotion {
 
 class FclOctomapCollisionModel final : public CollisionBackend {
  public:
-  // Mesh conventions as in CollisionModelOptions. Throws InvalidArgument for a bad resolution or
-  // an environment outside OctoMap's key range (+-32768 voxels about the origin).
+  // Mesh conventions as in CollisionModelOptions; `mount` as in FclCollisionModel. Throws
+  // InvalidArgument for a bad resolution or an environment outside OctoMap's key range (+-32768
+  // voxels about the origin).
   FclOctomapCollisionModel(const RobotModel& robot, const EnvironmentGeometry& environment,
                            double resolution, bool keep_mesh_root_transform = false,
-                           bool center_mesh_vertices = false);
+                           bool center_mesh_vertices = false,
+                           const Eigen::Isometry3d& mount = Eigen::Isometry3d::Identity());
   ~FclOctomapCollisionModel() override;
   FclOctomapCollisionModel(FclOctomapCollisionModel&&) noexcept;
 
@@ -37,7 +39,8 @@ class FclOctomapCollisionModel final : public CollisionBackend {
   using ScratchPtr = std::unique_ptr<Scratch, ScratchDeleter>;
   ScratchPtr makeScratch() const;
 
-  // Link poses from q (and X_WB for free-flying robots) into the scratch.
+  // Link poses from q (and X_WB for free-flying robots; fixed-base robots use baseMount()) into
+  // the scratch.
   void setConfiguration(const double* q, std::size_t q_size, const Eigen::Isometry3d& X_WB,
                         Scratch& scratch) const;
   // The OctoMap environment and the checked self pairs.
@@ -69,11 +72,13 @@ class FclOctomapCollisionModel final : public CollisionBackend {
   const RobotModel& robot() const override { return robot_; }
   std::uint64_t id() const override { return id_; }  // see OctreeCollisionModel::id
   CheckerKind kind() const override { return CheckerKind::kFclOctomap; }
+  const Eigen::Isometry3d& baseMount() const { return mount_; }
 
  private:
   struct Geometry;
   std::uint64_t id_;
   RobotModel robot_;
+  Eigen::Isometry3d mount_;
   double resolution_;
   std::size_t octomap_bytes_ = 0;
   double build_seconds_ = 0;

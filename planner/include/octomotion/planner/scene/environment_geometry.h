@@ -38,8 +38,9 @@ struct EnvironmentReport {
 class EnvironmentGeometry {
  public:
   // Reads every file an object names (meshes, point clouds, OctoMaps) once. Throws FileError
-  // naming the file. A point cloud's points each mark their voxel (whatever the rounding);
-  // non-finite points are skipped with a warning.
+  // naming the file, and InvalidArgument for an object still in a robot frame
+  // (EnvironmentObject::frame: resolveSceneFrames places it). A point cloud's points each mark
+  // their voxel (whatever the rounding); non-finite points are skipped with a warning.
   static EnvironmentGeometry load(const std::vector<EnvironmentObject>& objects,
                                   const WarningSink& warnings = {});
 

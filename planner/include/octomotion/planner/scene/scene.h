@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
@@ -12,6 +13,7 @@
 
 #include <Eigen/Geometry>
 
+#include "octomotion/octree/mesh.h"
 #include "octomotion/octree/rounding.h"
 #include "octomotion/octree/shapes.h"
 
@@ -43,6 +45,12 @@ struct EnvironmentObject {
   // The frame X_WO is given in: empty = the world; otherwise a robot link's name (MoveIt's
   // frame_id), resolved once the robot is loaded (at its start configuration).
   std::string frame;
+  // MoveIt's empty frame_id: X_WO is in the robot's model frame, its root link (which sits at
+  // robot.pose); `frame` is then empty. Resolved with `frame`.
+  bool robot_root_frame = false;
+  // kMesh given inline (a MoveIt shape_msgs/Mesh) in the object's frame instead of a file (then
+  // empty); `scale` and `keep_mesh_root_transform` do not apply.
+  std::shared_ptr<const TriangleMesh> mesh;
 };
 
 // The validity checker a scene plans with: the octree model's moveTree path or fused query, exact
@@ -80,6 +88,10 @@ struct LinkPoseGoalSpec {
   std::optional<Eigen::Quaterniond> orientation;  // empty: any orientation
   double position_tolerance = 1e-3;               // metres
   double orientation_tolerance = 1e-2;            // radians
+  // The frame position and orientation are given in, as EnvironmentObject::frame and
+  // ::robot_root_frame (a MoveIt request's header.frame_id); resolved to the world with them.
+  std::string frame;
+  bool robot_root_frame = false;
 };
 
 // A start or goal: a joint vector (arms), joint values by name, an SRDF group state, a link pose
