@@ -75,6 +75,10 @@ class FclCollisionModel final : public CollisionBackend {
   CheckerKind kind() const override { return CheckerKind::kFcl; }
 
  private:
+  void explainContacts(const double* q, std::size_t q_size, const Eigen::Isometry3d& X_WB,
+                       BackendScratch& scratch, bool all,
+                       StateExplanation& explanation) const override;
+
   struct Geometry;
   std::uint64_t id_;
   RobotModel robot_;
