@@ -97,6 +97,27 @@ bool hasContact(const StateExplanation& e, InvalidityReason::Kind kind, const st
   });
 }
 
+// Eight boxes of 5 to 30 cm scattered about the arm.
+std::vector<EnvironmentObject> scatteredBoxes(std::mt19937_64& rng) {
+  std::vector<EnvironmentObject> objects;
+  std::uniform_real_distribution<double> coordinate(-0.7, 0.7), size(0.05, 0.3);
+  for (int k = 0; k < 8; ++k) {
+    const Eigen::Isometry3d X =
+        at(coordinate(rng), coordinate(rng), 0.5 + coordinate(rng) / 1.4 * 0.5);
+    objects.push_back(
+        box("box" + std::to_string(k), Eigen::Vector3d(size(rng), size(rng), size(rng)), X));
+  }
+  return objects;
+}
+
+std::vector<double> uniformState(const RobotModel& robot, std::mt19937_64& rng) {
+  std::vector<double> q;
+  for (const Variable& v : robot.variables()) {
+    q.push_back(std::uniform_real_distribution<double>(v.lower, v.upper)(rng));
+  }
+  return q;
+}
+
 class Explain : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -224,25 +245,14 @@ TEST_F(Explain, NamesAJointBeyondItsLimitAndANaN) {
 // or pair) is among the conservative octree's; and the first contact is one of all of them.
 TEST_F(Explain, AgreesWithInCollisionOnRandomStates) {
   const RobotModel robot = loadPanda();
-  std::vector<EnvironmentObject> objects;
   std::mt19937_64 rng(2027);
-  std::uniform_real_distribution<double> coordinate(-0.7, 0.7), size(0.05, 0.3);
-  for (int k = 0; k < 8; ++k) {
-    const Eigen::Isometry3d X =
-        at(coordinate(rng), coordinate(rng), 0.5 + coordinate(rng) / 1.4 * 0.5);
-    objects.push_back(
-        box("box" + std::to_string(k), Eigen::Vector3d(size(rng), size(rng), size(rng)), X));
-  }
-  Backends b(robot, objects);
+  Backends b(robot, scatteredBoxes(rng));
   const std::size_t fcl = 3;
   ASSERT_EQ(b.names[fcl], "fcl");
   std::size_t colliding = 0, environment = 0, self = 0;
   std::vector<double> q(robot.variables().size());
   for (int s = 0; s < 150; ++s) {
-    for (std::size_t v = 0; v < q.size(); ++v) {
-      const Variable& var = robot.variables()[v];
-      q[v] = std::uniform_real_distribution<double>(var.lower, var.upper)(rng);
-    }
+    q = uniformState(robot, rng);
     const StateExplanation exact = b.explain(fcl, q, true);
     for (const InvalidityReason& r : exact.reasons) {
       (r.kind == InvalidityReason::Kind::kSelf ? self : environment) += 1;
@@ -271,6 +281,61 @@ TEST_F(Explain, AgreesWithInCollisionOnRandomStates) {
   EXPECT_GT(colliding, 0u);
   EXPECT_GT(environment, 0u);
   EXPECT_GT(self, 0u);
+}
+
+// A backend of the user's own, which only answers the halves: the default explanation says which
+// half collides, without names, and agrees with inCollision too.
+TEST_F(Explain, ABackendThatCannotNameContactsExplainsItsHalves) {
+  struct Wrapped final : CollisionBackend {
+    explicit Wrapped(std::shared_ptr<const CollisionBackend> b) : inner(std::move(b)) {}
+    std::unique_ptr<BackendScratch> makeBackendScratch() const override {
+      return inner->makeBackendScratch();
+    }
+    bool inCollision(const double* q, std::size_t n, const Eigen::Isometry3d& X,
+                     BackendScratch& s) const override {
+      return inner->inCollision(q, n, X, s);
+    }
+    bool environmentInCollision(const double* q, std::size_t n, const Eigen::Isometry3d& X,
+                                BackendScratch& s) const override {
+      return inner->environmentInCollision(q, n, X, s);
+    }
+    bool selfInCollision(const double* q, std::size_t n, const Eigen::Isometry3d& X,
+                         BackendScratch& s) const override {
+      return inner->selfInCollision(q, n, X, s);
+    }
+    double clearance(BackendScratch& s) const override { return inner->clearance(s); }
+    ClearanceBound clearanceBound() const override { return inner->clearanceBound(); }
+    const RobotModel& robot() const override { return inner->robot(); }
+    std::uint64_t id() const override { return inner->id(); }
+    CheckerKind kind() const override { return inner->kind(); }
+    std::shared_ptr<const CollisionBackend> inner;
+  };
+  const RobotModel robot = loadPanda();
+  std::mt19937_64 rng(2028);
+  Backends b(robot, scatteredBoxes(rng));
+  const Wrapped wrapped(b.all[0]);
+  const auto scratch = wrapped.makeBackendScratch();
+  ExplainOptions options;
+  options.all = true;
+  std::size_t both = 0;
+  for (int s = 0; s < 60; ++s) {
+    const std::vector<double> q = uniformState(robot, rng);
+    const StateExplanation e =
+        wrapped.explain(q.data(), q.size(), Eigen::Isometry3d::Identity(), *scratch, options);
+    const Eigen::Isometry3d I = Eigen::Isometry3d::Identity();
+    ASSERT_EQ(e.inCollision(), wrapped.inCollision(q.data(), q.size(), I, *scratch));
+    const bool environment = wrapped.environmentInCollision(q.data(), q.size(), I, *scratch);
+    const bool self = wrapped.selfInCollision(q.data(), q.size(), I, *scratch);
+    ASSERT_EQ(e.reasons.size(), (environment ? 1u : 0u) + (self ? 1u : 0u));
+    both += environment && self ? 1 : 0;
+    for (const InvalidityReason& r : e.reasons) {
+      EXPECT_TRUE(r.link.empty() && r.other.empty());
+      EXPECT_EQ(r.exact, ExactContact::kUnknown);
+      EXPECT_THAT(describe(r),
+                  ::testing::AnyOf("the robot with the environment", "a self-collision"));
+    }
+  }
+  EXPECT_GT(both, 0u);  // not vacuous
 }
 
 }  // namespace

@@ -47,10 +47,11 @@ std::string describe(const InvalidityReason& r) {
       return "joint '" + r.link + "' = " + number(r.value) + " is outside its limits [" +
              number(r.lower) + ", " + number(r.upper) + "]";
     case InvalidityReason::Kind::kEnvironment:
-      return "link " + r.link + " with " +
+      return (r.link.empty() ? std::string("the robot") : "link " + r.link) + " with " +
              (r.other.empty() ? std::string("the environment") : "object " + r.other);
     case InvalidityReason::Kind::kSelf:
-      return "link " + r.link + " with link " + r.other;
+      return r.link.empty() ? std::string("a self-collision")
+                            : "link " + r.link + " with link " + r.other;
   }
   return "";
 }
@@ -103,6 +104,24 @@ StateExplanation CollisionBackend::explain(const double* q, std::size_t q_size,
   }
   explainContacts(q, q_size, X_WB, scratch, options.all, e);
   return e;
+}
+
+void CollisionBackend::explainContacts(const double* q, std::size_t q_size,
+                                       const Eigen::Isometry3d& X_WB, BackendScratch& scratch,
+                                       bool all, StateExplanation& explanation) const {
+  auto add = [&](InvalidityReason::Kind kind) {
+    InvalidityReason r;
+    r.kind = kind;
+    r.exact = ExactContact::kUnknown;
+    explanation.reasons.push_back(r);
+  };
+  RobotData data = robot().makeData();
+  if (!poseForExplain(robot(), q, q_size, X_WB, data, explanation)) return;
+  const bool environment = environmentInCollision(q, q_size, X_WB, scratch);
+  if (environment) add(InvalidityReason::Kind::kEnvironment);
+  if ((all || !environment) && selfInCollision(q, q_size, X_WB, scratch)) {
+    add(InvalidityReason::Kind::kSelf);
+  }
 }
 
 bool CollisionBackend::poseForExplain(const RobotModel& robot, const double* q, std::size_t q_size,

@@ -80,9 +80,11 @@ class CollisionBackend {
  protected:
   // explain's contacts, for a finite q of the right size: poses the robot (poseForExplain
   // turns a non-finite link pose into a kNonFinite reason) and appends a reason per contact.
+  // The default, for backends that cannot name links: one reason per colliding half
+  // (environmentInCollision, selfInCollision) with empty names and an unknown exact contact.
   virtual void explainContacts(const double* q, std::size_t q_size, const Eigen::Isometry3d& X_WB,
                                BackendScratch& scratch, bool all,
-                               StateExplanation& explanation) const = 0;
+                               StateExplanation& explanation) const;
   // forwardKinematics into `data`; false (and a kNonFinite reason) when a link pose is not
   // finite.
   static bool poseForExplain(const RobotModel& robot, const double* q, std::size_t q_size,
