@@ -1,5 +1,6 @@
 // A start or goal in collision: refused when the scene is loaded, naming the contact
 // (CollisionBackend::explain), instead of OMPL's "no solution" after the whole time limit.
+#include <algorithm>
 #include <filesystem>
 #include <sstream>
 #include <string>
