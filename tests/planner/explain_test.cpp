@@ -14,6 +14,7 @@
 #include <random>
 #include <set>
 #include <string>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -281,6 +282,42 @@ TEST_F(Explain, AgreesWithInCollisionOnRandomStates) {
   EXPECT_GT(colliding, 0u);
   EXPECT_GT(environment, 0u);
   EXPECT_GT(self, 0u);
+}
+
+// explain is const and thread-safe: threads sharing a fresh model (its per-object data built on
+// first use, by whichever thread gets there) give the answers one thread gives.
+TEST_F(Explain, ThreadsSharingAModelGetTheSameExplanations) {
+  const RobotModel robot = loadPanda();
+  std::mt19937_64 rng(2029);
+  const std::vector<EnvironmentObject> objects = scatteredBoxes(rng);
+  std::vector<std::vector<double>> states;
+  for (int s = 0; s < 40; ++s) states.push_back(uniformState(robot, rng));
+  ExplainOptions options;
+  options.all = true;
+  auto explainAll = [&](const CollisionBackend& backend) {
+    std::vector<std::string> out;
+    const auto scratch = backend.makeBackendScratch();
+    for (const std::vector<double>& q : states) {
+      out.push_back(describe(
+          backend.explain(q.data(), q.size(), Eigen::Isometry3d::Identity(), *scratch, options)));
+    }
+    return out;
+  };
+  const EnvironmentGeometry environment = EnvironmentGeometry::load(objects);
+  const OctreeBackend alone(
+      std::make_shared<const OctreeCollisionModel>(robot, environment, CollisionModelOptions{}),
+      CheckerPath::kFused);
+  const std::vector<std::string> expected = explainAll(alone);
+  const OctreeBackend shared(
+      std::make_shared<const OctreeCollisionModel>(robot, environment, CollisionModelOptions{}),
+      CheckerPath::kFused);
+  std::vector<std::vector<std::string>> got(4);
+  std::vector<std::thread> threads;
+  for (auto& g : got) threads.emplace_back([&] { g = explainAll(shared); });
+  for (std::thread& t : threads) t.join();
+  for (const auto& g : got) EXPECT_EQ(g, expected);
+  EXPECT_TRUE(std::any_of(expected.begin(), expected.end(),
+                          [](const std::string& e) { return !e.empty(); }));
 }
 
 // A backend of the user's own, which only answers the halves: the default explanation says which
