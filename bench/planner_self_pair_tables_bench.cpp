@@ -45,7 +45,8 @@ int run(int argc, char** argv) {
   }
   SceneOverrides overrides;
   overrides.resolution = resolution;
-  overrides.self_pair_tables = false;  // the scene's model is only used for its settings
+  overrides.self_pair_tables = false;         // the scene's model is only used for its settings
+  overrides.require_free_start_goal = false;  // uniform states, not the problem
   const PlanningScene scene = loadPlanningScene(argv[1], overrides);
   const RobotModel& robot = scene.model->robot();
   if (robot.isFreeFlying()) throw InvalidArgument("an arm scene is needed (joint states)");

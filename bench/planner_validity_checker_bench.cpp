@@ -27,6 +27,7 @@ void BM_IsValid(benchmark::State& state) {
   const std::string scene_name = kScenes[state.range(0)];
   SceneOverrides overrides;
   overrides.checker = kCheckers[state.range(1)];
+  overrides.require_free_start_goal = false;  // uniform states, not the problem
   const PlanningScene scene = loadPlanningScene(
       std::string(OCTOMOTION_SOURCE_DIR) + "/robots/scenes/" + scene_name + ".yaml", overrides);
   const ob::SpaceInformationPtr& si = scene.setup->getSpaceInformation();

@@ -12,7 +12,6 @@
 #include <string>
 #include <vector>
 
-#include <ompl/base/goals/GoalState.h>
 #include <ompl/base/spaces/SE3StateSpace.h>
 #include <ompl/util/Console.h>
 
@@ -29,7 +28,7 @@ using namespace octomotion;
 
 const char* kUsage = R"(usage:
   octomotion plan SCENE [--out PATH] [--planner NAME] [--time SECONDS] [--seed N] [options]
-  octomotion check SCENE --states STATES.csv [options]
+  octomotion check SCENE --states STATES.csv [--explain] [options]
   octomotion info SCENE [options]
   octomotion bench SCENE [bench options] [options]   (octomotion bench --help)
   octomotion view SCENE [--path PATH] [view options] [options]   (octomotion view --help)
@@ -40,6 +39,7 @@ options:
 // After the scene options (tools::sceneOptions()).
 const char* kUsageTail =
     R"(  --interpolation METRES   plan: spacing of the written path's states (default: OMPL's)
+  --explain                check: a reason column (why each invalid state is invalid)
   --verbose                OMPL's log messages on stderr
 )";
 
@@ -47,6 +47,7 @@ struct Args {
   std::string command, scene, out, states;
   double interpolation = 0;
   bool verbose = false;
+  bool explain = false;
   SceneOverrides overrides;
 };
 
@@ -68,6 +69,8 @@ Args parseArgs(int argc, char** argv) {
     } else if (arg == "--interpolation") {
       a.interpolation = cli::parseNumber(arg, value());
       if (!(a.interpolation > 0)) throw InvalidArgument("--interpolation: must be > 0");
+    } else if (arg == "--explain") {
+      a.explain = true;
     } else if (arg == "--verbose") {
       a.verbose = true;
     } else if (arg == "-h" || arg == "--help") {
@@ -89,6 +92,9 @@ Args parseArgs(int argc, char** argv) {
   }
   if (a.command == "check" && a.states.empty())
     throw InvalidArgument("check: --states is required");
+  if (a.explain && a.command != "check") throw InvalidArgument("--explain: check only");
+  // check looks at any state, the scene's start and goal too.
+  if (a.command == "check") a.overrides.require_free_start_goal = false;
   return a;
 }
 
@@ -96,42 +102,11 @@ PlanningScene load(const Args& a) {
   return cli::loadSceneVerbose(a.scene, a.overrides);
 }
 
-// A start or goal in collision can only end in "no solution" after the whole time limit: say so
-// at once, and whether exact geometry (FCL) agrees or only the voxels' margin collides. (Which
-// pair collides needs an explain API.)
-void requireFreeStartAndGoal(const PlanningScene& scene) {
-  const auto& pdef = scene.setup->getProblemDefinition();
-  const auto* goal = pdef->getGoal()->as<ompl::base::GoalState>();
-  const bool cfg = scene.spec.path.size() > 4 &&
-                   scene.spec.path.compare(scene.spec.path.size() - 4, 4, ".cfg") == 0;
-  const auto& checker = *scene.setup->getStateValidityChecker();
-  for (const auto& [state, which] :
-       {std::pair<const ompl::base::State*, const char*>{pdef->getStartState(0), "start"},
-        {goal->getState(), "goal"}}) {
-    if (checker.isValid(state)) continue;
-    std::ostringstream what;
-    what << (cfg ? "[problem] " + std::string(which) + ".*" : "problem." + std::string(which))
-         << " is in collision for the " << checkerKindName(scene.checker)
-         << " checker at a resolution of " << *scene.spec.octree.resolution << " m";
-    if (scene.checker != CheckerKind::kFcl) {
-      const FclValidityChecker exact(scene.setup->getSpaceInformation(), scene.fcl_model);
-      if (exact.isValid(state)) {
-        what << "; FCL (exact) finds it free, so only the voxels' margin collides: a finer "
-                "--resolution (or --link-resolution) should accept it";
-      } else {
-        what << "; FCL (exact) agrees";
-      }
-    }
-    throw FileError(scene.spec.path, what.str());
-  }
-}
-
 int plan(const Args& a) {
   PlanningScene scene = load(a);
   if (!scene.spec.problem.start || !scene.spec.problem.goal) {
     throw FileError(a.scene, "problem: a start and a goal are needed to plan");
   }
-  requireFreeStartAndGoal(scene);
   std::cerr << "octomotion: planning with " << scene.spec.problem.planner << " for at most "
             << scene.spec.problem.time << " s\n";
   const PlanResult r = octomotion::plan(scene, a.interpolation);
@@ -165,6 +140,35 @@ std::vector<std::string> splitCsv(const std::string& line) {
   return fields;
 }
 
+// A CSV field as written: quoted (quotes doubled) when it holds a comma, a quote or a newline.
+std::string csvField(const std::string& text) {
+  if (text.find_first_of(",\"\n") == std::string::npos) return text;
+  std::string quoted = "\"";
+  for (char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return quoted + "\"";
+}
+
+// check --explain: why an invalid state is invalid (every reason, "; "-separated).
+std::string whyInvalid(const CollisionBackend& backend, BackendScratch& scratch,
+                       const ompl::base::SpaceInformation& si, const ompl::base::State* state,
+                       const std::vector<double>& values) {
+  const RobotModel& robot = backend.robot();
+  std::vector<double> q = values;
+  Eigen::Isometry3d X_WB = Eigen::Isometry3d::Identity();
+  if (robot.isFreeFlying()) {
+    q.clear();
+    if (!stateToConfiguration(robot, state, q, X_WB)) {
+      return "the pose is not finite or its quaternion is zero";
+    }
+  }
+  ExplainOptions options;
+  options.all = true;
+  const StateExplanation e = backend.explain(q.data(), q.size(), X_WB, scratch, options);
+  if (!e.valid()) return describe(e);
+  if (!si.satisfiesBounds(state)) return "outside the state space's bounds";
+  return "invalid";  // not expected: the checker and explain agree
+}
+
 int check(const Args& a) {
   PlanningScene scene = load(a);
   const RobotModel& robot = scene.model->robot();
@@ -192,7 +196,13 @@ int check(const Args& a) {
   si->setup();
   ompl::base::ScopedState<> state(si);
   std::vector<double> values(wanted.size());
-  std::cout << "index,valid,time_ns\n";
+  std::cout << (a.explain ? "index,valid,time_ns,reason\n" : "index,valid,time_ns\n");
+  std::shared_ptr<const CollisionBackend> backend;
+  std::unique_ptr<BackendScratch> scratch;
+  if (a.explain) {
+    backend = checkerBackend(scene);
+    scratch = backend->makeBackendScratch();
+  }
   std::size_t index = 0, row = 1, valid_count = 0;
   while (std::getline(in, line)) {
     ++row;
@@ -228,7 +238,13 @@ int check(const Args& a) {
         std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - t0)
             .count();
     valid_count += valid ? 1 : 0;
-    std::cout << index++ << ',' << (valid ? 1 : 0) << ',' << ns << '\n';
+    std::cout << index++ << ',' << (valid ? 1 : 0) << ',' << ns;
+    if (a.explain) {
+      std::cout << ','
+                << (valid ? ""
+                          : csvField(whyInvalid(*backend, *scratch, *si, state.get(), values)));
+    }
+    std::cout << '\n';
   }
   std::cerr << "octomotion: " << valid_count << " of " << index << " states valid\n";
   return 0;

@@ -154,6 +154,7 @@ int viewCommand(const std::vector<std::string>& args) {
   // Find the viewer before the (possibly slow) scene load, so a bad --viewer-dir fails fast.
   const std::optional<fs::path> viewer = findViewerDir(viewer_flag);
 
+  overrides.require_free_start_goal = false;  // a colliding start is worth a look
   const PlanningScene scene = loadSceneVerbose(scene_path, overrides);
   const RobotModel& robot = scene.model->robot();
   std::vector<RobotState> path;

@@ -390,7 +390,8 @@ TradeStudyResult runTradeStudy(const TradeStudyOptions& options) {
       double build = 0;
       try {
         t0 = Clock::now();
-        model = std::make_shared<const OctreeCollisionModel>(robot, environment, mo);
+        // The shared objects: no copy per setting (the model keeps them for explanations).
+        model = std::make_shared<const OctreeCollisionModel>(robot, scene.environment, mo);
         build = seconds(t0, Clock::now());
         if (!free_flying) motion_reach = model->report().reach_W.sizes().maxCoeff() / 2;
       } catch (const Error& e) {

@@ -8,6 +8,7 @@
 
 #include "internal/collision_model_builder.h"
 #include "internal/collision_model_parts.h"
+#include "internal/explain_data.h"
 
 namespace octomotion {
 
@@ -18,11 +19,19 @@ std::uint64_t nextModelId() {
 
 OctreeCollisionModel::OctreeCollisionModel(RobotModel robot, const EnvironmentGeometry& environment,
                                            const CollisionModelOptions& options)
+    : OctreeCollisionModel(std::move(robot),
+                           std::make_shared<const EnvironmentGeometry>(environment), options) {}
+
+OctreeCollisionModel::OctreeCollisionModel(RobotModel robot,
+                                           std::shared_ptr<const EnvironmentGeometry> environment,
+                                           const CollisionModelOptions& options)
     : id_(nextModelId()), robot_(std::move(robot)), options_(options) {
+  if (!environment) throw InvalidArgument("OctreeCollisionModel: no environment");
   const auto start = std::chrono::steady_clock::now();
-  parts_ = detail::CollisionModelBuilder(robot_, environment, options_, report_).build();
+  parts_ = detail::CollisionModelBuilder(robot_, *environment, options_, report_).build();
   report_.build_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  explain_ = std::make_unique<detail::ExplainData>(std::move(environment));
 }
 
 OctreeCollisionModel::OctreeCollisionModel(OctreeCollisionModel&&) noexcept = default;

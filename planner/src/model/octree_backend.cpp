@@ -18,6 +18,18 @@ CheckerKind OctreeBackend::kind() const {
   return path_ == CheckerPath::kFused ? CheckerKind::kOctreeFused : CheckerKind::kOctree;
 }
 
+void OctreeBackend::explainContacts(const double* q, std::size_t q_size,
+                                    const Eigen::Isometry3d& X_WB, BackendScratch& scratch,
+                                    bool all, StateExplanation& explanation) const {
+  CheckScratch& check = scratchOf(scratch).check;
+  const RobotModel& robot = model_->robot();
+  if (!poseForExplain(robot, q, q_size, robot.isFreeFlying() ? X_WB : model_->baseMount(),
+                      check.robot, explanation)) {
+    return;
+  }
+  model_->explainContacts(path_, check, all, explanation);
+}
+
 void OctreeBackend::throwForeignScratch() {
   throw InvalidArgument("OctreeBackend: the scratch was made by another backend");
 }

@@ -96,6 +96,16 @@ bool SelfCollision::pairsInCollision(const LinkModels& links, CheckerPath path,
   return false;
 }
 
+std::vector<std::size_t> SelfCollision::hitPairs(const LinkModels& links, CheckerPath path,
+                                                 CheckScratch& scratch, bool all) const {
+  std::vector<std::size_t> hits;
+  placeCentres(links, scratch);
+  for (std::size_t i = 0; i < pairs.size() && (all || hits.empty()); ++i) {
+    if (pairHits(i, links, path, scratch)) hits.push_back(i);
+  }
+  return hits;
+}
+
 bool SelfCollision::broadPhaseInCollision(const LinkModels& links, CheckerPath path,
                                           CheckScratch& scratch) const {
   // Created lazily for scratch made by hand (or for another model): once per thread, not per

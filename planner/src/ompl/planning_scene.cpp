@@ -59,13 +59,6 @@ std::string shortNumber(double v) {
   return s.str();
 }
 
-// The collision backend the scene's checker names (building the reference model it needs).
-std::shared_ptr<const CollisionBackend> checkerBackend(const PlanningScene& scene) {
-  if (scene.checker == CheckerKind::kFcl) return scene.fclModel();
-  if (scene.checker == CheckerKind::kFclOctomap) return scene.fclOctomapModel();
-  return std::make_shared<const OctreeBackend>(scene.model, octreeCheckerPath(scene.checker));
-}
-
 // The OMPL part of loadPlanningScene and plan, whose ompl::Exceptions the callers translate.
 void setUpOmpl(PlanningScene& scene, bool free_flying, double robot_diagonal, double resolution,
                bool bounds_given);
@@ -285,7 +278,6 @@ PlanningScene loadPlanningScene(const std::string& scene_path, const SceneOverri
   scene.spec = std::move(inputs.spec);
   scene.environment = std::move(inputs.environment);
   const SceneSpec& spec = scene.spec;
-  const EnvironmentGeometry& environment = *scene.environment;
   std::optional<RobotModel>& robot = inputs.robot;
   // Seed before OMPL creates any random number generator.
   if (spec.problem.seed) ompl::RNG::setSeed(*spec.problem.seed);
@@ -313,7 +305,7 @@ PlanningScene loadPlanningScene(const std::string& scene_path, const SceneOverri
   const bool free_flying = robot->isFreeFlying();
   try {
     scene.model =
-        std::make_shared<const OctreeCollisionModel>(std::move(*robot), environment, options);
+        std::make_shared<const OctreeCollisionModel>(std::move(*robot), scene.environment, options);
   } catch (const InvalidArgument& e) {
     // Most model errors depend on the resolution (depth, memory guard): say where it came from.
     throw InvalidArgument(spec.path + ": at " + inputs.resolution_field + " " +
@@ -345,6 +337,8 @@ PlanningScene loadPlanningScene(const std::string& scene_path, const SceneOverri
   } catch (const InvalidArgument& e) {
     throw InvalidArgument(spec.path + ": " + e.what());
   }
+  // Next to requireWithinBounds (setUpOmpl), once the checker is in place.
+  if (overrides.require_free_start_goal) requireFreeStartAndGoal(scene);
   return scene;
 }
 

@@ -1,6 +1,7 @@
 #include "octomotion/planner/reference/fcl_collision_model.h"
 
 #include <limits>
+#include <string>
 
 #include <fcl/broadphase/broadphase_dynamic_AABB_tree.h>
 #include <fcl/narrowphase/collision.h>
@@ -19,6 +20,7 @@ struct FclCollisionModel::Geometry {
       : robot(model, keep_mesh_root_transform, center_mesh_vertices) {}
   fcl_internal::RobotGeometry robot;
   std::vector<std::unique_ptr<fcl::CollisionObjectd>> environment;
+  std::vector<std::string> environment_names;  // parallel to environment (explain)
   // Broad phase over the environment objects, built once; queries only read it.
   fcl::DynamicAABBTreeCollisionManagerd environment_manager;
 };
@@ -56,6 +58,7 @@ FclCollisionModel::FclCollisionModel(const RobotModel& robot,
     fcl_internal::setTightAabb(*object);
     objects.push_back(object.get());
     geometry_->environment.push_back(std::move(object));
+    geometry_->environment_names.push_back(item.spec.name);
   }
   if (!objects.empty()) {
     geometry_->environment_manager.registerObjects(objects);
@@ -189,6 +192,37 @@ double FclCollisionModel::environmentDistance(Scratch& s, double cap) const {
     if (query.best <= 0) return 0;
   }
   return query.best;
+}
+
+void FclCollisionModel::explainContacts(const double* q, std::size_t q_size,
+                                        const Eigen::Isometry3d& X_WB, BackendScratch& scratch,
+                                        bool all, StateExplanation& explanation) const {
+  Scratch& s = scratchOf(scratch);
+  if (!poseForExplain(robot_, q, q_size, robot_.isFreeFlying() ? X_WB : mount_, s.robot.robot,
+                      explanation)) {
+    return;
+  }
+  geometry_->robot.poseElements(s.robot.robot, s.robot);
+  // Every link against every object (no broad phase: not a hot path), link by link.
+  for (int link = 0; link < robot_.linkCount(); ++link) {
+    if (!robot_.link(link).hasCollision()) continue;
+    for (std::size_t o = 0; o < geometry_->environment.size(); ++o) {
+      if (!geometry_->robot.linkCollides(s.robot, link, *geometry_->environment[o])) continue;
+      InvalidityReason r;
+      r.kind = InvalidityReason::Kind::kEnvironment;
+      r.link = robot_.link(link).name;
+      r.other = geometry_->environment_names[o];
+      explanation.reasons.push_back(r);
+      if (!all) return;
+    }
+  }
+  for (const auto& [a, b] : geometry_->robot.collidingPairs(s.robot, all)) {
+    InvalidityReason r;
+    r.kind = InvalidityReason::Kind::kSelf;
+    r.link = robot_.link(a).name;
+    r.other = robot_.link(b).name;
+    explanation.reasons.push_back(r);
+  }
 }
 
 double FclCollisionModel::selfDistance(Scratch& s, double cap) const {

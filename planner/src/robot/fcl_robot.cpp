@@ -103,12 +103,55 @@ void RobotGeometry::initScratch(const RobotModel& robot, RobotScratch& s) const 
 void RobotGeometry::pose(const RobotModel& robot, const double* q, std::size_t q_size,
                          const Eigen::Isometry3d& X_WB, RobotScratch& s) const {
   robot.forwardKinematics(q, q_size, s.robot, X_WB);
+  poseElements(s.robot, s);
+}
+
+void RobotGeometry::poseElements(const RobotData& data, RobotScratch& s) const {
   for (std::size_t i = 0; i < elements_.size(); ++i) {
     const Element& e = elements_[i];
-    const Eigen::Isometry3d X_WE = s.robot.linkPose(e.link) * e.X_LE;
+    const Eigen::Isometry3d X_WE = data.linkPose(e.link) * e.X_LE;
     s.objects[i].setTransform(X_WE.rotation(), X_WE.translation());
     setTightAabb(s.objects[i]);
   }
+}
+
+std::vector<std::pair<int, int>> RobotGeometry::collidingPairs(RobotScratch& s, bool all) const {
+  std::vector<std::pair<int, int>> pairs;
+  for (const auto& [a, b] : element_pairs_) {
+    const std::pair<int, int> links(elements_[static_cast<std::size_t>(a)].link,
+                                    elements_[static_cast<std::size_t>(b)].link);
+    // Element pairs of one link pair are contiguous.
+    if (!pairs.empty() && pairs.back() == links) continue;
+    if (collidePair(s.objects[static_cast<std::size_t>(a)], s.objects[static_cast<std::size_t>(b)],
+                    s.request, s.result)) {
+      pairs.push_back(links);
+      if (!all) break;
+    }
+  }
+  return pairs;
+}
+
+bool RobotGeometry::linksCollide(RobotScratch& s, int link_a, int link_b) const {
+  for (std::size_t a = 0; a < elements_.size(); ++a) {
+    if (elements_[a].link != link_a) continue;
+    for (std::size_t b = 0; b < elements_.size(); ++b) {
+      if (elements_[b].link == link_b &&
+          collidePair(s.objects[a], s.objects[b], s.request, s.result)) {
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
+bool RobotGeometry::linkCollides(RobotScratch& s, int link,
+                                 const fcl::CollisionObjectd& object) const {
+  for (std::size_t a = 0; a < elements_.size(); ++a) {
+    if (elements_[a].link == link && collidePair(s.objects[a], object, s.request, s.result)) {
+      return true;
+    }
+  }
+  return false;
 }
 
 bool RobotGeometry::selfInCollision(RobotScratch& s) const {

@@ -141,21 +141,8 @@ Octree EnvironmentGeometry::voxelize(const WorldGrid& grid, Rounding rounding,
   Octree all(grid);
   for (const Item& item : items_) {
     const auto t0 = std::chrono::steady_clock::now();
-    Octree part(grid);
-    switch (item.spec.kind) {
-      case EnvironmentObject::Kind::kPrimitive:
-        part = octomotion::voxelize(grid, item.spec.primitive, item.spec.X_WO, rounding);
-        break;
-      case EnvironmentObject::Kind::kMesh:
-        part = voxelizeMesh(grid, item.mesh, item.spec.X_WO, rounding, warnings);
-        break;
-      case EnvironmentObject::Kind::kOctomap:
-        part = importOctoMap(item.spec.file, grid, rounding, warnings);
-        break;
-      case EnvironmentObject::Kind::kPointCloud:
-        part = pointcloud::environmentFromPoints(grid, item.points_W);
-        break;
-    }
+    const Octree part =
+        voxelizeObject(static_cast<std::size_t>(&item - items_.data()), grid, rounding, warnings);
     all = unite(all, part);
     if (report) {
       report->objects.push_back(
@@ -168,6 +155,22 @@ Octree EnvironmentGeometry::voxelize(const WorldGrid& grid, Rounding rounding,
     report->build_seconds = secondsSince(start);
   }
   return all;
+}
+
+Octree EnvironmentGeometry::voxelizeObject(std::size_t i, const WorldGrid& grid, Rounding rounding,
+                                           const WarningSink& warnings) const {
+  const Item& item = items_.at(i);
+  switch (item.spec.kind) {
+    case EnvironmentObject::Kind::kPrimitive:
+      return octomotion::voxelize(grid, item.spec.primitive, item.spec.X_WO, rounding);
+    case EnvironmentObject::Kind::kMesh:
+      return voxelizeMesh(grid, item.mesh, item.spec.X_WO, rounding, warnings);
+    case EnvironmentObject::Kind::kOctomap:
+      return importOctoMap(item.spec.file, grid, rounding, warnings);
+    case EnvironmentObject::Kind::kPointCloud:
+      return pointcloud::environmentFromPoints(grid, item.points_W);
+  }
+  return Octree(grid);
 }
 
 }  // namespace octomotion

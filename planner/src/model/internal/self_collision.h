@@ -71,6 +71,10 @@ class SelfCollision {
     }
     return pairsInCollision(links, path, scratch);
   }
+  // For explanations: the indices in `pairs` of every checked pair that meets (the first only
+  // unless `all`), by the same stages as inCollision, over all pairs.
+  std::vector<std::size_t> hitPairs(const LinkModels& links, CheckerPath path,
+                                    CheckScratch& scratch, bool all) const;
   // A new broad-phase octree for this model's self links (each CheckScratch owns one).
   broadphase::NObjectsOctree makeBroadPhase() const;
 

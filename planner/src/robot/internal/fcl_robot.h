@@ -51,8 +51,17 @@ class RobotGeometry {
   void pose(const RobotModel& robot, const double* q, std::size_t q_size,
             const Eigen::Isometry3d& X_WB, RobotScratch& scratch) const;
 
+  // Each element's pose and world AABB from link poses already in `data` (forwardKinematics).
+  void poseElements(const RobotData& data, RobotScratch& scratch) const;
+
   // The robot's checked self pairs (RobotModel::checkedPairs), element by element.
   bool selfInCollision(RobotScratch& scratch) const;
+  // For explanations: the checked link pairs (a < b) whose elements collide, in checkedPairs
+  // order, the first only unless `all`; whether two links' elements collide; whether one of a
+  // link's elements collides with `object`.
+  std::vector<std::pair<int, int>> collidingPairs(RobotScratch& scratch, bool all) const;
+  bool linksCollide(RobotScratch& scratch, int link_a, int link_b) const;
+  bool linkCollides(RobotScratch& scratch, int link, const fcl::CollisionObjectd& object) const;
   // Smallest distance between the elements of checked pairs (0 in contact, +inf with no pairs);
   // pairs whose AABBs are at least `cap` apart are skipped (distances >= cap may read as cap).
   double selfDistance(RobotScratch& scratch, double cap) const;

@@ -13,6 +13,7 @@
 
 #include <Eigen/Geometry>
 
+#include "octomotion/planner/model/state_explanation.h"
 #include "octomotion/planner/robot/robot_model.h"
 #include "octomotion/planner/scene/scene.h"
 
@@ -53,6 +54,16 @@ class CollisionBackend {
   virtual bool selfInCollision(const double* q, std::size_t q_size, const Eigen::Isometry3d& X_WB,
                                BackendScratch& scratch) const = 0;
 
+  // Why the state (q, X_WB as for inCollision) is invalid: non-finite values, joints outside
+  // their limits (options.check_limits), and the contacts — each link with the environment
+  // object it meets, each checked pair that meets — with whether the exact shapes touch and the
+  // checker's margin. explain(...).inCollision() == inCollision(...) for every finite state; a
+  // non-finite one is explained instead of thrown. The first contact only unless options.all.
+  // Not a hot path (it allocates; octree models build per-object data on first use). Throws
+  // InvalidArgument for a wrong q size or a scratch made by another backend.
+  StateExplanation explain(const double* q, std::size_t q_size, const Eigen::Isometry3d& X_WB,
+                           BackendScratch& scratch, const ExplainOptions& options = {}) const;
+
   // Distance from the robot, posed by the scratch's last query, to the environment, as
   // clearanceBound() says (0 in contact).
   virtual double clearance(BackendScratch& scratch) const = 0;
@@ -67,6 +78,19 @@ class CollisionBackend {
   const char* name() const { return checkerKindName(kind()); }
 
  protected:
+  // explain's contacts, for a finite q of the right size: poses the robot (poseForExplain
+  // turns a non-finite link pose into a kNonFinite reason) and appends a reason per contact.
+  // The default, for backends that cannot name links: one reason per colliding half
+  // (environmentInCollision, selfInCollision) with empty names and an unknown exact contact.
+  virtual void explainContacts(const double* q, std::size_t q_size, const Eigen::Isometry3d& X_WB,
+                               BackendScratch& scratch, bool all,
+                               StateExplanation& explanation) const;
+  // forwardKinematics into `data`; false (and a kNonFinite reason) when a link pose is not
+  // finite.
+  static bool poseForExplain(const RobotModel& robot, const double* q, std::size_t q_size,
+                             const Eigen::Isometry3d& X_WB, RobotData& data,
+                             StateExplanation& explanation);
+
   CollisionBackend() = default;
   CollisionBackend(const CollisionBackend&) = default;
   CollisionBackend(CollisionBackend&&) = default;

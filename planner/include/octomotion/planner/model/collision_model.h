@@ -25,6 +25,7 @@
 #include "octomotion/motion/collides.h"
 #include "octomotion/octree/octree.h"
 #include "octomotion/octree/rounding.h"
+#include "octomotion/planner/model/state_explanation.h"
 #include "octomotion/planner/robot/robot_model.h"
 #include "octomotion/planner/scene/environment_geometry.h"
 
@@ -36,6 +37,7 @@ namespace octomotion {
 
 namespace detail {
 struct CollisionModelParts;
+struct ExplainData;
 }  // namespace detail
 
 // kMoveTree: moveTree places the source tree on the target's grid, then the parallel traversal
@@ -275,6 +277,10 @@ class OctreeCollisionModel {
   // environment it can never reach are not modelled) and one source tree per link.
   OctreeCollisionModel(RobotModel robot, const EnvironmentGeometry& environment,
                        const CollisionModelOptions& options);
+  // The same, keeping `environment` (explainContacts names its objects) without a copy; the
+  // constructor above keeps a copy.
+  OctreeCollisionModel(RobotModel robot, std::shared_ptr<const EnvironmentGeometry> environment,
+                       const CollisionModelOptions& options);
   OctreeCollisionModel(OctreeCollisionModel&& other) noexcept;
   OctreeCollisionModel& operator=(OctreeCollisionModel&& other) noexcept;
   ~OctreeCollisionModel();
@@ -301,6 +307,14 @@ class OctreeCollisionModel {
   // Its two halves: links against the environment only, and the checked self pairs only.
   bool environmentInCollision(CheckerPath path, CheckScratch& scratch) const;
   bool selfInCollision(CheckerPath path, CheckScratch& scratch) const;
+  // Why the link poses in the scratch collide (CollisionBackend::explain): each link whose
+  // environment test hits, with each object whose own voxels (on the environment's grid, built on
+  // first use and kept) or, with exact primitives, whose primitive its voxels meet; each checked
+  // pair that meets. Whether the exact shapes touch is asked of FCL (meshes and primitives;
+  // unknown for point clouds and OctoMaps); the margin is the voxel size. Appends to
+  // explanation.reasons, the first contact only unless `all`. Agrees with linksInCollision.
+  void explainContacts(CheckerPath path, CheckScratch& scratch, bool all,
+                       StateExplanation& explanation) const;
   // The strategy selfInCollision uses (options' choice, kAuto resolved by link count).
   SelfBroadPhase selfBroadPhase() const { return report_.self_broad_phase; }
 
@@ -329,6 +343,7 @@ class OctreeCollisionModel {
   CollisionModelOptions options_;
   CollisionModelReport report_;
   std::unique_ptr<const detail::CollisionModelParts> parts_;
+  std::unique_ptr<detail::ExplainData> explain_;  // built on first use (octree_explain.cpp)
 };
 
 }  // namespace octomotion

@@ -57,6 +57,9 @@ class OctreeBackend final : public CollisionBackend {
   CheckerPath path() const { return path_; }
 
  private:
+  void explainContacts(const double* q, std::size_t q_size, const Eigen::Isometry3d& X_WB,
+                       BackendScratch& scratch, bool all,
+                       StateExplanation& explanation) const override;
   [[noreturn]] static void throwForeignScratch();
   // Forward kinematics into the scratch, as OctreeCollisionModel::inCollision does.
   CheckScratch& pose(const double* q, std::size_t q_size, const Eigen::Isometry3d& X_WB,

@@ -39,6 +39,9 @@ struct SceneOverrides {
   std::optional<double> self_link_resolution;  // > 0; octree.self_link_resolution
   std::optional<bool> self_pair_tables;        // octree.self_pair_tables
   std::optional<bool> exact_primitives;        // octree.exact_primitives
+  // loadPlanningScene refuses a start or goal in collision (requireFreeStartAndGoal); commands
+  // that look at colliding states on purpose (check, view) turn it off.
+  bool require_free_start_goal = true;
 };
 
 // The resolution used when a scene says `auto` (or a .cfg says nothing): fixed-base arms 1 cm;
@@ -126,9 +129,22 @@ struct SceneInputs {
 SceneInputs loadSceneInputs(const std::string& scene_path, const SceneOverrides& overrides = {},
                             const WarningSink& warnings = {});
 
-// Throws octomotion::Error (naming the file and field) for anything wrong with the scene.
+// Throws octomotion::Error (naming the file and field) for anything wrong with the scene: a start
+// or goal outside the joint limits or bounds, or (unless overrides.require_free_start_goal is
+// off) in collision for the scene's checker (requireFreeStartAndGoal).
 PlanningScene loadPlanningScene(const std::string& scene_path, const SceneOverrides& overrides = {},
                                 const WarningSink& warnings = {});
+
+// The scene's checker as a CollisionBackend (building the reference model it needs).
+std::shared_ptr<const CollisionBackend> checkerBackend(const PlanningScene& scene);
+// Throws FileError when the scene's start or goal is in collision for its checker, naming the
+// contacts (CollisionBackend::explain), e.g. "problem.goal is in collision for the octree-fused
+// checker: link panda_hand with object shelf_top", and when only the voxels' margin collides (the
+// exact shapes do not touch) "...; the exact shapes do not touch: within the voxel margin of
+// resolution R m, try a finer --resolution".
+void requireFreeStartAndGoal(const PlanningScene& scene);
+// The contacts of a colliding state as that message words them (at most three named).
+std::string describeCollision(const StateExplanation& explanation);
 
 // Makes an OMPL geometric planner by name (RRTConnect, RRT, RRTstar, PRM, KPIECE1, BKPIECE1,
 // LBKPIECE1, EST, SBL, BITstar, InformedRRTstar, PRMstar, LazyPRM, FMT, ...); InvalidArgument

@@ -79,6 +79,10 @@ class FclCollisionModel final : public CollisionBackend {
   const Eigen::Isometry3d& baseMount() const { return mount_; }
 
  private:
+  void explainContacts(const double* q, std::size_t q_size, const Eigen::Isometry3d& X_WB,
+                       BackendScratch& scratch, bool all,
+                       StateExplanation& explanation) const override;
+
   struct Geometry;
   std::uint64_t id_;
   RobotModel robot_;

@@ -51,6 +51,9 @@ class EnvironmentGeometry {
   // The union of every object's octree on `grid`.
   Octree voxelize(const WorldGrid& grid, Rounding rounding, EnvironmentReport* report = nullptr,
                   const WarningSink& warnings = {}) const;
+  // Object i's octree on `grid` (voxelize unites these).
+  Octree voxelizeObject(std::size_t i, const WorldGrid& grid, Rounding rounding,
+                        const WarningSink& warnings = {}) const;
 
   struct Item {
     EnvironmentObject spec;
