@@ -4,12 +4,16 @@
 // (tests/data/urdf/arm.urdf, arm_groups.srdf), not from a run.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <random>
 #include <set>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -422,6 +426,57 @@ TEST(PlanningGroupScene, ParsingKeepsNamesAndRejectsBadValues) {
   expectError([&] { armScene("  start: {elbow: 1, elbow: 2}\n"); },
               {"problem.start.elbow", "twice"});
   expectError([&] { armScene("  group: [a]\n"); }, {"problem.group"});
+}
+
+// --- The command line ---
+
+struct CliRun {
+  int status;
+  std::string out, err;
+};
+
+CliRun runCli(const std::string& args) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / "octomotion_planning_group_test";
+  std::filesystem::create_directories(dir);
+  const std::string out = (dir / "stdout").string(), err = (dir / "stderr").string();
+  const int raw =
+      std::system((std::string(OCTOMOTION_CLI) + " " + args + " >" + out + " 2>" + err).c_str());
+  auto slurp = [](const std::string& p) {
+    std::ifstream in(p);
+    std::stringstream text;
+    text << in.rdbuf();
+    return text.str();
+  };
+  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(out), slurp(err)};
+}
+
+TEST(PlanningGroupCli, InfoPlanAndCheckUseThePlannedJoints) {
+  const std::string scene = std::string(OCTOMOTION_TEST_DATA_DIR) + "/scenes/arm_group.yaml";
+  const CliRun info = runCli("info " + scene + " --resolution 0.02");
+  ASSERT_EQ(info.status, 0) << info.err;
+  EXPECT_THAT(info.out, HasSubstr("joint order: shoulder elbow\n"));
+  EXPECT_THAT(info.out, HasSubstr("group: arm, 2 planned joints\n"));
+  EXPECT_THAT(info.out,
+              HasSubstr("held joints: wrist=0.5, slider=0.02, finger_mirror=-0.02 (mimic)\n"));
+  // The path: a comment naming the planned joints, then two columns from the start's values.
+  const std::string path = (std::filesystem::temp_directory_path() / "arm_group.path").string();
+  const CliRun plan = runCli("plan " + scene + " --resolution 0.02 --out " + path);
+  ASSERT_EQ(plan.status, 0) << plan.err;
+  std::ifstream in(path);
+  std::string header, first;
+  std::getline(in, header);
+  std::getline(in, first);
+  EXPECT_EQ(header, "# joints: shoulder elbow");
+  EXPECT_EQ(first, "0.5 -2");
+  // check: columns found by name, so a file with every joint of the robot works.
+  const std::string csv = (std::filesystem::temp_directory_path() / "arm_group.csv").string();
+  std::ofstream(csv) << "wrist,elbow,slider,shoulder\n0,-2,0,0.5\n9,1,9,-1\n";
+  const CliRun check = runCli("check " + scene + " --resolution 0.02 --states " + csv);
+  ASSERT_EQ(check.status, 0) << check.err;
+  EXPECT_THAT(check.err, HasSubstr("2 of 2 states valid"));
+  std::filesystem::remove(path);
+  std::filesystem::remove(csv);
 }
 
 }  // namespace
