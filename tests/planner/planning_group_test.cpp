@@ -393,6 +393,17 @@ TEST(PlanningGroupScene, ErrorsNameTheField) {
             "finger_mirror: 0.01}\n");
       },
       {"problem.start.finger_mirror", "-0.01"});
+  // A held master's value is its held one (problem.fixed), not the start's.
+  expectError(
+      [&] {
+        resolve(
+            "  group: arm\n  fixed: {slider: 0.01}\n  start: {group_state: folded, slider: "
+            "0.03, finger_mirror: -0.03}\n");
+      },
+      {"problem.start.finger_mirror", "'slider' = 0.01", "gives -0.01"});
+  resolve(
+      "  group: arm\n  fixed: {slider: 0.01}\n  start: {group_state: folded, finger_mirror: "
+      "-0.01}\n");
   expectError([&] { resolve("  group: arm\n  start: sideways\n"); },
               {"problem.start", "group_state 'sideways'", "folded (arm)"});
   expectError([&] { resolve("  group: arm\n  start: [0, 0, 0, 0]\n"); },

@@ -86,15 +86,15 @@ class Resolver {
     return out;
   }
 
-  // A named mimic joint's value must be what its master gives.
+  // A named mimic joint's value must be what its master gives: the state's value for a planned
+  // master, the held value for a held one.
   void checkMimics(const NamedState& state, const std::vector<double>& values,
-                   const std::string& field) const {
+                   const std::vector<bool>& planned, const std::string& field) const {
     for (const auto& [joint, value] : state.mimic) {
       const Joint& j = robot_.joint(joint);
       const Joint& master = robot_.joint(j.mimic_master);
-      const auto it = state.values.find(j.mimic_master);
-      const double master_value =
-          it != state.values.end() ? it->second : values[static_cast<std::size_t>(master.variable)];
+      const auto v = static_cast<std::size_t>(master.variable);
+      const double master_value = planned[v] ? state.values.at(j.mimic_master) : values[v];
       const double expected = j.mimic_multiplier * master_value + j.mimic_offset;
       if (std::abs(value - expected) > kMimicTolerance) {
         fail(field + "." + j.name,
@@ -219,7 +219,7 @@ RobotModel resolvePlanningGroup(const RobotModel& robot, SceneSpec& spec,
       }
       state->joints.push_back(it->second);
     }
-    r.checkMimics(named, values, field);
+    r.checkMimics(named, values, planned, field);
   };
   resolveState(problem.start, "start");
   resolveState(problem.goal, "goal");
