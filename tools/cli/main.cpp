@@ -250,6 +250,21 @@ int check(const Args& a) {
   return 0;
 }
 
+// The group planned and the joints held at a value (problem.group, problem.fixed).
+void printPlanningGroup(const PlanningScene& scene, std::ostream& out) {
+  const RobotModel& robot = scene.model->robot();
+  const std::string& group = scene.spec.problem.group;
+  out << "group: " << (group.empty() ? "(none: every joint not held)" : group) << ", "
+      << robot.variableCount() << " planned joints\n";
+  out << "held joints:";
+  if (robot.heldJoints().empty()) out << " none";
+  for (const HeldJoint& h : robot.heldJoints()) {
+    out << (&h == &robot.heldJoints().front() ? " " : ", ") << robot.joint(h.joint).name << '='
+        << h.value << (h.mimic ? " (mimic)" : "");
+  }
+  out << "\n";
+}
+
 int info(const Args& a) {
   PlanningScene scene = load(a);
   const RobotModel& robot = scene.model->robot();
@@ -262,6 +277,7 @@ int info(const Args& a) {
     std::cout << "joint order:";
     for (const Variable& v : robot.variables()) std::cout << ' ' << v.name;
     std::cout << "\n";
+    printPlanningGroup(scene, std::cout);
   }
   std::cout << "resolution: " << *scene.spec.octree.resolution << " m, rounding "
             << toString(scene.spec.octree.rounding) << ", checker "

@@ -91,6 +91,7 @@ std::unique_ptr<const CollisionModelParts> CollisionModelBuilder::build() {
   buildSolidBoxes();
   buildClearanceLevels();
   keepLinksThatCanTouch();
+  foldStaticLinks();
   orderEnvironmentLinks();
   std::vector<TableJob> jobs = collectSelfPairs();
   classifyPairTables(jobs);

@@ -95,6 +95,18 @@ std::string CollisionModelReport::toString() const {
         << 100 * t.colliding_fraction << " % (" << t.classified << " FCL cells, " << t.build_seconds
         << " s)";
   }
+  if (!static_links.empty()) {
+    out << "\nstatic links (no joint moves them; tested against the environment once):";
+    for (const std::string& name : static_links) out << " " << name;
+  }
+  if (!constant_pairs.empty()) {
+    out << "\nconstant self pairs (no joint between them; tested once, dropped): "
+        << constant_pairs.size();
+    for (const auto& [a, b] : constant_pairs) out << " " << a << "-" << b;
+  }
+  for (const std::string& what : static_collisions) {
+    out << "\nEVERY STATE IS IN COLLISION: " << what;
+  }
   out << "\nmodel built in " << build_seconds << " s\n";
   return out.str();
 }

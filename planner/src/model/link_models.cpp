@@ -144,7 +144,7 @@ void LinkModels::orderEnvironmentTests(const EnvironmentModel& environment, cons
   const double voxel = environment.tree.grid().voxelSize();
   const bool exact = !environment.exact_primitives.empty();
   for (std::size_t slot = 0; slot < links.size(); ++slot) {
-    if (links[slot].touches_environment) {
+    if (links[slot].touches_environment && !links[slot].folded) {
       environment_tests.push_back(environmentTest(slot, voxel, exact));
     }
   }

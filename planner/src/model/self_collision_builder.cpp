@@ -51,7 +51,7 @@ std::vector<CollisionModelBuilder::TableJob> CollisionModelBuilder::collectSelfP
   for (const auto& [a, b] : robot_.checkedPairs()) {
     const int sa = links_.link_slot[static_cast<std::size_t>(a)];
     const int sb = links_.link_slot[static_cast<std::size_t>(b)];
-    if (sa < 0 || sb < 0) continue;
+    if (sa < 0 || sb < 0 || folded_pairs_.count({a, b}) > 0) continue;
     const double pair_reach =
         SelfCollision::spheresReach(*links_.self_voxels[static_cast<std::size_t>(sa)],
                                     *links_.self_voxels[static_cast<std::size_t>(sb)]);

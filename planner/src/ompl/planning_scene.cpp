@@ -32,6 +32,7 @@
 #include "octomotion/planner/ompl/state_space.h"
 #include "octomotion/planner/ompl/validity_checker.h"
 #include "octomotion/planner/robot/collision_meshes.h"
+#include "octomotion/planner/scene/planning_group.h"
 #include "octomotion/planner/scene/scene_frames.h"
 
 namespace octomotion {
@@ -225,6 +226,8 @@ SceneInputs loadSceneInputs(const std::string& scene_path, const SceneOverrides&
       throw FileError(spec.path, std::string("robot: ") + e.what());
     }
   }
+  // The planned joints (problem.group, problem.fixed): every model is built on this robot.
+  robot = resolvePlanningGroup(*robot, spec, warnings);
 
   // Objects and goals given in the robot's frames, placed at the start (mount included).
   resolveSceneFrames(spec, *robot);
@@ -473,6 +476,13 @@ void writePath(const PlanningScene& scene, const og::PathGeometric& path, std::o
   std::vector<double> q(static_cast<std::size_t>(robot.variableCount()));
   Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
   out.precision(17);
+  if (!robot.isFreeFlying()) {
+    // Which joints the columns are (a group plans fewer than the robot has); readers of OMPL's
+    // format skip '#' lines.
+    out << "# joints:";
+    for (const Variable& v : robot.variables()) out << ' ' << v.name;
+    out << '\n';
+  }
   for (unsigned i = 0; i < path.getStateCount(); ++i) {
     if (!stateToConfiguration(robot, path.getState(i), q, X)) {
       throw Error("writePath: state " + std::to_string(i) + " is not finite");

@@ -1,7 +1,9 @@
 // The collision-filter part of MoveIt's SRDF: <disable_collisions link1 link2/>, plus
 // <disable_default_collisions link/> (the link against every other) and
 // <enable_collisions link1 link2/> (an exception to the former), applied in that order.
-// Other elements (groups, end effectors, virtual joints...) are ignored.
+// Groups and group states are read by srdf_groups.cpp; other elements (end effectors, virtual
+// joints...) are ignored.
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -9,6 +11,7 @@
 
 #include <tinyxml.h>
 
+#include "internal/srdf_groups.h"
 #include "internal/xml_text.h"
 #include "octomotion/input_limits.h"
 #include "octomotion/planner/robot/robot_model.h"
@@ -60,6 +63,31 @@ void RobotModel::loadSrdfString(const std::string& srdf_xml, const std::string& 
       disable_all.push_back(linkAttribute(e, "link"));
     }
   }
+  detail::SrdfGroups groups = detail::parseSrdfGroups(
+      *this, *robot, source_name, mode == SrdfMode::kMerge ? groups_ : std::vector<JointGroup>{});
+  if (mode == SrdfMode::kReplace) {
+    groups_.clear();
+    group_states_.clear();
+  }
+  for (JointGroup& g : groups.groups) {
+    const auto same = std::find_if(groups_.begin(), groups_.end(),
+                                   [&](const JointGroup& old) { return old.name == g.name; });
+    if (same != groups_.end()) {
+      *same = std::move(g);
+    } else {
+      groups_.push_back(std::move(g));
+    }
+  }
+  for (GroupState& s : groups.states) {
+    const auto same = std::find_if(
+        group_states_.begin(), group_states_.end(),
+        [&](const GroupState& old) { return old.name == s.name && old.group == s.group; });
+    if (same != group_states_.end()) {
+      *same = std::move(s);
+    } else {
+      group_states_.push_back(std::move(s));
+    }
+  }
   if (mode == SrdfMode::kReplace) disabled_.assign(links_.size() * links_.size(), 0);
   auto set = [&](int a, int b, unsigned char value) {
     disabled_[pairSlot(a, b)] = value;
@@ -71,6 +99,23 @@ void RobotModel::loadSrdfString(const std::string& srdf_xml, const std::string& 
   }
   for (const auto& [a, b] : enable) set(a, b, 0);
   rebuildCheckedPairs();
+}
+
+const JointGroup* RobotModel::findGroup(const std::string& group_name) const {
+  for (const JointGroup& g : groups_) {
+    if (g.name == group_name) return &g;
+  }
+  return nullptr;
+}
+
+std::vector<int> RobotModel::groupVariables(const JointGroup& group) const {
+  std::vector<int> variables;
+  for (int j : group.joints) {
+    const int v = joint(j).variable;
+    if (v >= 0) variables.push_back(v);
+  }
+  std::sort(variables.begin(), variables.end());
+  return variables;
 }
 
 }  // namespace octomotion

@@ -1,5 +1,6 @@
 #include "octomotion/planner/scene/scene.h"
 
+#include <cctype>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -162,15 +163,54 @@ Primitive primitiveFrom(const YamlReader& r, const std::string& kind, const YAML
                   r.positive(node["length"], field + ".length")};
 }
 
-StateSpec stateFrom(const YamlReader& r, const YAML::Node& node, const std::string& field) {
+// {joint: value} in file order; allowOnly-style rejection of a key given twice.
+std::vector<std::pair<std::string, double>> namedValues(const YamlReader& r, const YAML::Node& node,
+                                                        const std::string& field,
+                                                        std::string* group_state = nullptr) {
+  std::vector<std::pair<std::string, double>> out;
+  std::set<std::string> seen;
+  for (const auto& kv : node) {
+    const std::string key = kv.first.Scalar();
+    const std::string key_field = field + "." + key;
+    if (!seen.insert(key).second)
+      r.fail(key_field, kv.first, "key given twice in the same mapping");
+    if (group_state != nullptr && key == "group_state") {
+      *group_state = r.string(kv.second, key_field);
+      continue;
+    }
+    out.emplace_back(key, r.number(kv.second, key_field));
+  }
+  return out;
+}
+
+// A map of pose keys only is a pose; any other map gives joint values by name.
+bool isPoseMap(const YAML::Node& node) {
+  for (const auto& kv : node) {
+    const std::string key = kv.first.Scalar();
+    if (key != "xyz" && key != "rpy" && key != "quat" && key != "axis" && key != "theta") {
+      return false;
+    }
+  }
+  return node.size() > 0;
+}
+
+StateSpec stateFrom(const YamlReader& r, const YAML::Node& node, const std::string& field,
+                    bool has_joints) {
   StateSpec s;
   if (node.IsSequence()) {
     s.joints = r.numbers(node, field);
     if (s.joints.empty()) r.fail(field, node, "empty joint vector");
-  } else if (node.IsMap()) {
+  } else if (node.IsMap() && isPoseMap(node)) {
     s.pose = r.pose(node, field);
+  } else if (node.IsMap() && has_joints) {
+    s.named = namedValues(r, node, field, &s.group_state);
+  } else if (has_joints && node.IsScalar() && !node.Scalar().empty() &&
+             !std::isdigit(static_cast<unsigned char>(node.Scalar()[0]))) {
+    s.group_state = node.Scalar();
   } else {
-    r.fail(field, node, "expected a joint vector [q1, q2, ...] or a pose {xyz, rpy|quat}");
+    r.fail(field, node,
+           "expected a joint vector [q1, q2, ...], joint values {name: value}, an SRDF "
+           "group_state name or a pose {xyz, rpy|quat}");
   }
   return s;
 }
@@ -353,12 +393,19 @@ void parseMoveItRequestKey(const YamlReader& r, const YAML::Node& node, SceneSpe
 }
 
 void parseProblem(const YamlReader& r, const YAML::Node& node, SceneSpec& scene) {
-  r.allowOnly(node, "problem",
-              {"start", "goal", "bounds", "planner", "time", "seed", "moveit_request"});
+  r.allowOnly(
+      node, "problem",
+      {"group", "fixed", "start", "goal", "bounds", "planner", "time", "seed", "moveit_request"});
   ProblemSpec& p = scene.problem;
   if (node["moveit_request"]) parseMoveItRequestKey(r, node, scene);
-  if (node["start"]) p.start = stateFrom(r, node["start"], "problem.start");
-  if (node["goal"]) p.goal = stateFrom(r, node["goal"], "problem.goal");
+  if (node["group"]) p.group = r.string(node["group"], "problem.group");
+  if (const YAML::Node fixed = node["fixed"]) {
+    if (!fixed.IsMap()) r.fail("problem.fixed", fixed, "expected {joint: value, ...}");
+    p.fixed = namedValues(r, fixed, "problem.fixed");
+  }
+  const bool joints = !scene.robot.urdf.empty();  // a URDF's states may name joints
+  if (node["start"]) p.start = stateFrom(r, node["start"], "problem.start", joints);
+  if (node["goal"]) p.goal = stateFrom(r, node["goal"], "problem.goal", joints);
   if (const YAML::Node b = node["bounds"]) {
     r.allowOnly(b, "problem.bounds", {"min", "max"});
     const Eigen::Vector3d lo = r.vector3(b["min"], "problem.bounds.min");

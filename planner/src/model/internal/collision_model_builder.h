@@ -8,6 +8,8 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <set>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -53,6 +55,7 @@ class CollisionModelBuilder {
   void buildSolidBoxes();
   void buildClearanceLevels();
   void keepLinksThatCanTouch();
+  void foldStaticLinks();
   void orderEnvironmentLinks();
   std::vector<TableJob> collectSelfPairs();
   void classifyPairTables(std::vector<TableJob>& jobs) const;
@@ -90,6 +93,7 @@ class CollisionModelBuilder {
   WorldGrid grid_{Eigen::Vector3d::Zero(), 1.0, 1};
   bool exact_ = false;  // exact primitives in force
   std::map<int, Octree> oracles_;
+  std::set<std::pair<int, int>> folded_pairs_;  // constant self pairs (robot link indices)
 };
 
 }  // namespace octomotion::detail

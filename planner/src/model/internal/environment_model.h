@@ -79,10 +79,14 @@ class EnvironmentModel {
   std::vector<ExactPrimitive> exact_primitives;
   // With exact primitives in a scene that also has other objects: their tree.
   std::unique_ptr<const VoxelObjects> other_objects;
+  // Per CheckerPath: a link whose pose never changes (CollisionModelOptions::fold_static) met
+  // the environment at build time, so every state is in collision.
+  std::array<bool, 2> always_hits{};
 
   // The environment half of a check: the links' tests in order, stopping at the first contact.
   bool inCollision(const LinkModels& links, CheckerPath path, const RobotData& robot,
                    CollisionScratch& fused) const {
+    if (always_hits[static_cast<std::size_t>(path)]) return true;
     for (const EnvironmentLinkTest& t : links.environment_tests) {
       const Eigen::Isometry3d& X_WL = robot.linkPose(t.link);
       if (sphereMeetsBox(t, X_WL, box_W) &&

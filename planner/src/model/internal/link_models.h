@@ -60,7 +60,8 @@ struct LinkTree {
   // deepening the environment queries.
   std::unique_ptr<const LinkVoxels> self_voxels;
   const LinkVoxels& forSelf() const { return self_voxels ? *self_voxels : voxels; }
-  bool touches_environment = true;         // false: cannot reach the modelled environment
+  bool touches_environment = true;  // false: cannot reach the modelled environment
+  bool folded = false;  // its pose is constant: tested against the environment at build time
   std::vector<Eigen::Vector4d> spheres_L;  // coarse cover of the black voxels (clearance)
 };
 

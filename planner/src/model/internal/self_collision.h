@@ -6,6 +6,7 @@
 // world boxes (kNObjectsOctree), kept per thread in the CheckScratch.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -43,6 +44,9 @@ class SelfCollision {
   std::vector<std::int32_t> pair_of;
   Eigen::AlignedBox3d root_box_W;  // the broad phase's root: everything links can reach
   std::uint32_t leaf_capacity = kSelfBroadPhaseLeafCapacity;
+  // Per CheckerPath: a pair whose relative pose never changes (CollisionModelOptions::
+  // fold_static) met at build time, so every state is in collision.
+  std::array<bool, 2> always_hits{};
 
   // The bounding spheres (centres in W from placeCentres) are close enough for B's voxels
   // placed on A's grid to reach A when their centres are within spheresReach of each other.
@@ -65,6 +69,7 @@ class SelfCollision {
 
   // The self half of a check, with the strategy resolved at build time.
   bool inCollision(const LinkModels& links, CheckerPath path, CheckScratch& scratch) const {
+    if (always_hits[static_cast<std::size_t>(path)]) return true;
     if (pairs.empty()) return false;
     if (strategy == SelfBroadPhase::kNObjectsOctree) {
       return broadPhaseInCollision(links, path, scratch);
@@ -75,6 +80,13 @@ class SelfCollision {
   // unless `all`), by the same stages as inCollision, over all pairs.
   std::vector<std::size_t> hitPairs(const LinkModels& links, CheckerPath path,
                                     CheckScratch& scratch, bool all) const;
+  // Build time: one pair's stages (spheres, table, boxes, trees) at the poses in the scratch.
+  bool pairHitsOnce(const SelfPair& p, const LinkModels& links, CheckerPath path,
+                    CheckScratch& scratch) const {
+    placeCentres(links, scratch);
+    return spheresMeet(p, scratch.centres_W[p.a], scratch.centres_W[p.b]) &&
+           pairStagesHit(p, links, path, scratch);
+  }
   // A new broad-phase octree for this model's self links (each CheckScratch owns one).
   broadphase::NObjectsOctree makeBroadPhase() const;
 

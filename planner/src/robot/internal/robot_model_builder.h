@@ -23,6 +23,16 @@ class RobotModelBuilder {
     model.finalize();
     return model;
   }
+
+  // What holdJoints keeps of the model it reduces: the self-collision filter (finalize reset it to
+  // the adjacent pairs), the SRDF groups; and the joints it holds.
+  static void keepSemantics(const RobotModel& from, RobotModel& to, std::vector<HeldJoint> held) {
+    to.disabled_ = from.disabled_;
+    to.rebuildCheckedPairs();
+    to.groups_ = from.groups_;
+    to.group_states_ = from.group_states_;
+    to.held_ = std::move(held);
+  }
 };
 
 }  // namespace octomotion

@@ -16,6 +16,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -170,6 +171,14 @@ struct CollisionModelOptions {
   // apply (a warning; CollisionModelReport::exact_primitives is 0). Off by default: the
   // environment octree is the library's general path (docs/planner.md, "Exact primitives").
   bool exact_primitives = false;
+  // Model only what a state can change: on a fixed-base robot, links whose pose depends on no
+  // joint variable (only fixed joints up to the root: a base, a held joint's links) are tested
+  // against the environment once, at build time, instead of per state; self pairs whose relative
+  // pose depends on no variable (no movable joint on the path between the two links; free-flying
+  // robots too) are tested once and dropped from the per-state pairs. Same answers for every
+  // state; when such a build-time test finds a contact, every state is in collision (and
+  // CollisionModelReport::static_collisions says which). Off: every link and pair per state.
+  bool fold_static = true;
   WarningSink warnings;
 };
 
@@ -235,6 +244,12 @@ struct CollisionModelReport {
   std::size_t environment_clearance_grid_bytes = 0;
   std::vector<std::string> environment_order;  // links in the order the environment half tests
   std::vector<SelfPairTableReport> self_pair_tables;
+  // CollisionModelOptions::fold_static: the links tested against the environment once (instead
+  // of per state), the self pairs tested once and dropped (names in robot order), and those of
+  // them found in contact: when any is, every state is in collision.
+  std::vector<std::string> static_links;
+  std::vector<std::pair<std::string, std::string>> constant_pairs;
+  std::vector<std::string> static_collisions;
   double build_seconds = 0;
   std::string toString() const;  // the human-readable "what was modelled" summary
 };

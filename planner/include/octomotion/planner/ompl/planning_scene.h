@@ -164,7 +164,8 @@ struct PlanResult {
 // (0: OMPL's default interpolation).
 PlanResult plan(PlanningScene& scene, double interpolation = 0.0);
 
-// OMPL's path format: one state per line, SE(3) as "x y z qx qy qz qw", joints in q order.
+// OMPL's path format: one state per line, SE(3) as "x y z qx qy qz qw", joints in q order (the
+// planned joints only, named on a first "# joints: ..." line; rigid bodies have no such line).
 void writePath(const PlanningScene& scene, const ompl::geometric::PathGeometric& path,
                std::ostream& out);
 

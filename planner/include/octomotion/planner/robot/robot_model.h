@@ -78,6 +78,32 @@ struct Variable {
   bool continuous = false;  // unbounded angle: wraps around, [lower, upper] = [-pi, pi]
 };
 
+// An SRDF <group> (MoveIt's JointModelGroup), resolved to this robot's joints: a <joint> adds
+// itself, a <link> its parent joint, a <chain base_link tip_link> the joints on the path between
+// the two links (through their common ancestor when neither is above the other), a <group> the
+// joints of that group. Its planned joints are those of its joints that have a variable.
+struct JointGroup {
+  std::string name;
+  std::vector<int> joints;  // joint indices, ascending (fixed and mimic joints included)
+  std::vector<int> links;   // the child links of `joints`, ascending
+};
+
+// An SRDF <group_state>: named joint values for a group ("ready", "open").
+struct GroupState {
+  std::string name;
+  std::string group;
+  std::vector<std::pair<int, double>> values;  // joint index and value, in file order
+};
+
+// A joint that was movable in the robot's description and is fixed at `value` in this model
+// (see holdJoints in held_joints.h): its motion is part of its X_PJ.
+struct HeldJoint {
+  int joint = -1;
+  double value = 0.0;
+  JointType type = JointType::kFixed;  // its type in the description
+  bool mimic = false;                  // it mimicked a joint that is held too
+};
+
 struct RobotModelOptions {
   // Directories searched for package:// URIs before the environment's (see PackageLocator).
   std::vector<std::string> package_paths;
@@ -167,6 +193,18 @@ class RobotModel {
   const std::vector<std::pair<int, int>>& checkedPairs() const { return checked_pairs_; }
   std::vector<std::pair<int, int>> disabledPairs() const;
 
+  // --- SRDF groups ---
+  // The SRDF's <group> and <group_state> elements (loadSrdf*; kReplace replaces them, kMerge adds
+  // to them, a group of the same name replacing the old one). Errors name the file, the line and
+  // the unknown joint, link or group.
+  const std::vector<JointGroup>& groups() const { return groups_; }
+  const std::vector<GroupState>& groupStates() const { return group_states_; }
+  const JointGroup* findGroup(const std::string& group_name) const;  // nullptr when absent
+  // The indices in q of the group's joints that have one (its planned joints), ascending.
+  std::vector<int> groupVariables(const JointGroup& group) const;
+  // Joints held at a value by holdJoints (empty for a model loaded from a description).
+  const std::vector<HeldJoint>& heldJoints() const { return held_; }
+
   // --- Forward kinematics ---
   RobotData makeData() const;
   // World pose of every link, for configuration q (variableCount() values) and base pose X_WB
@@ -220,6 +258,9 @@ class RobotModel {
   std::vector<KinematicStep, Eigen::aligned_allocator<KinematicStep>> steps_;
   std::vector<unsigned char> disabled_;  // links x links, symmetric
   std::vector<std::pair<int, int>> checked_pairs_;
+  std::vector<JointGroup> groups_;
+  std::vector<GroupState> group_states_;
+  std::vector<HeldJoint> held_;
 };
 
 }  // namespace octomotion
