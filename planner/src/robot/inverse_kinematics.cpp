@@ -255,7 +255,7 @@ IkResult InverseKinematics::solve(const LinkPoseTarget& target, const std::vecto
       jacobian_current = true;
       // dq = J^T (J J^T + damping I)^-1 e: a 6x6 solve whatever the number of variables.
       Matrix6d A;
-      A.noalias() = s.J * s.J.transpose();
+      A.noalias() = s.J.lazyProduct(s.J.transpose());  // coefficient-wise: no blocking buffers
       A.diagonal().array() += damping;
       const Vector6d y = A.ldlt().solve(e);
       double largest = 0;
