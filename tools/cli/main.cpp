@@ -101,14 +101,17 @@ PlanningScene load(const Args& a) {
 // pair collides needs an explain API.)
 void requireFreeStartAndGoal(const PlanningScene& scene) {
   const auto& pdef = scene.setup->getProblemDefinition();
-  const auto* goal = pdef->getGoal()->as<ompl::base::GoalState>();
+  // A link-pose goal is a region whose samples the planner checks itself: only a goal state here.
+  const ompl::base::State* goal = pdef->getGoal()->hasType(ompl::base::GOAL_STATE)
+                                      ? pdef->getGoal()->as<ompl::base::GoalState>()->getState()
+                                      : nullptr;
   const bool cfg = scene.spec.path.size() > 4 &&
                    scene.spec.path.compare(scene.spec.path.size() - 4, 4, ".cfg") == 0;
   const auto& checker = *scene.setup->getStateValidityChecker();
   for (const auto& [state, which] :
        {std::pair<const ompl::base::State*, const char*>{pdef->getStartState(0), "start"},
-        {goal->getState(), "goal"}}) {
-    if (checker.isValid(state)) continue;
+        {goal, "goal"}}) {
+    if (!state || checker.isValid(state)) continue;
     std::ostringstream what;
     what << (cfg ? "[problem] " + std::string(which) + ".*" : "problem." + std::string(which))
          << " is in collision for the " << checkerKindName(scene.checker)

@@ -297,11 +297,51 @@ void parseOctree(const YamlReader& r, const YAML::Node& node, SceneSpec& scene) 
   }
 }
 
+// problem.goal as a link pose: {link, position, orientation [x, y, z, w] | rpy, tolerance}.
+bool isLinkPoseGoal(const YAML::Node& node) {
+  return node.IsMap() && node["link"];
+}
+
+StateSpec linkPoseGoalFrom(const YamlReader& r, const YAML::Node& node, const std::string& field) {
+  r.allowOnly(node, field, {"link", "position", "orientation", "rpy", "tolerance"});
+  LinkPoseGoalSpec goal;
+  goal.link = r.string(node["link"], field + ".link");
+  if (!node["position"]) r.fail(field + ".position", node, "missing (the link's [x, y, z])");
+  goal.position = r.vector3(node["position"], field + ".position");
+  if (node["orientation"] && node["rpy"]) {
+    r.fail(field, node, "give one of orientation [x, y, z, w] or rpy [roll, pitch, yaw]");
+  }
+  if (node["orientation"]) {
+    const std::vector<double> q = r.numbers(node["orientation"], field + ".orientation", 4);
+    const auto unit = scaledUnitVector(Eigen::Vector4d(q[0], q[1], q[2], q[3]));
+    if (!unit) r.fail(field + ".orientation", node["orientation"], "quaternion has zero length");
+    goal.orientation = Eigen::Quaterniond((*unit)[3], (*unit)[0], (*unit)[1], (*unit)[2]);
+  } else if (node["rpy"]) {
+    const Eigen::Vector3d rpy = r.vector3(node["rpy"], field + ".rpy");
+    goal.orientation = Eigen::Quaterniond(rotationFromRpy(rpy.x(), rpy.y(), rpy.z()));
+  }
+  if (const YAML::Node t = node["tolerance"]) {
+    r.allowOnly(t, field + ".tolerance", {"position", "orientation"});
+    if (t["position"]) {
+      goal.position_tolerance = r.positive(t["position"], field + ".tolerance.position");
+    }
+    if (t["orientation"]) {
+      goal.orientation_tolerance = r.positive(t["orientation"], field + ".tolerance.orientation");
+    }
+  }
+  StateSpec s;
+  s.link_pose = goal;
+  return s;
+}
+
 void parseProblem(const YamlReader& r, const YAML::Node& node, SceneSpec& scene) {
   r.allowOnly(node, "problem", {"start", "goal", "bounds", "planner", "time", "seed"});
   ProblemSpec& p = scene.problem;
   if (node["start"]) p.start = stateFrom(r, node["start"], "problem.start");
-  if (node["goal"]) p.goal = stateFrom(r, node["goal"], "problem.goal");
+  if (node["goal"]) {
+    p.goal = isLinkPoseGoal(node["goal"]) ? linkPoseGoalFrom(r, node["goal"], "problem.goal")
+                                          : stateFrom(r, node["goal"], "problem.goal");
+  }
   if (const YAML::Node b = node["bounds"]) {
     r.allowOnly(b, "problem.bounds", {"min", "max"});
     const Eigen::Vector3d lo = r.vector3(b["min"], "problem.bounds.min");
