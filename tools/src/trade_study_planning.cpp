@@ -10,8 +10,10 @@
 
 #include <ompl/geometric/SimpleSetup.h>
 #include <ompl/tools/benchmark/Benchmark.h>
+#include <ompl/util/RandomNumbers.h>
 
 #include "octomotion/error.h"
+#include "octomotion/planner/ompl/link_pose_goal.h"
 #include "octomotion/planner/ompl/state_space.h"
 #include "octomotion/planner/ompl/validity_checker.h"
 #include "trade_study_internal.h"
@@ -111,7 +113,16 @@ PlanRow runPlanning(const StudyScene& scene, const PlanSetting& setting,
     }
     return state;
   };
-  ss.setStartAndGoalStates(toState(*scene.spec.problem.start), toState(*scene.spec.problem.goal));
+  if (const auto& link_pose = scene.spec.problem.goal->link_pose) {
+    // The robot outlives ss: a non-owning pointer.
+    const std::shared_ptr<const RobotModel> unowned(std::shared_ptr<const RobotModel>(), &robot);
+    ss.setStartState(toState(*scene.spec.problem.start));
+    ss.setGoal(makeLinkPoseGoal(si, unowned,
+                                scene.spec.robot.pose.value_or(Eigen::Isometry3d::Identity()),
+                                *link_pose, planner.name, ompl::RNG().uniformInt(0, 1 << 30)));
+  } else {
+    ss.setStartAndGoalStates(toState(*scene.spec.problem.start), toState(*scene.spec.problem.goal));
+  }
   PlanRow row;
   row.scene = scene.spec.name;
   row.planner = planner.name;

@@ -29,6 +29,7 @@
 
 #include "octomotion/octree/mesh.h"
 #include "octomotion/planner/model/octree_backend.h"
+#include "octomotion/planner/ompl/link_pose_goal.h"
 #include "octomotion/planner/ompl/state_space.h"
 #include "octomotion/planner/ompl/validity_checker.h"
 #include "octomotion/planner/robot/collision_meshes.h"
@@ -391,6 +392,20 @@ void requireWithinBounds(const SceneSpec& spec, const RobotModel& robot, const S
   }
 }
 
+// problem.goal: {link: ...}: the start, and a goal whose samples are IK solutions (the pose is
+// in the world, so the robot's mount is part of the kinematics).
+void setLinkPoseGoal(PlanningScene& scene, const ob::ScopedState<>& start) {
+  const SceneSpec& spec = scene.spec;
+  const ob::SpaceInformationPtr& si = scene.setup->getSpaceInformation();
+  ompl::RNG rng;  // seeded by problem.seed, like the planner's
+  const auto seed = static_cast<std::uint64_t>(rng.uniformInt(0, std::numeric_limits<int>::max()));
+  const std::shared_ptr<const RobotModel> robot(scene.model, &scene.model->robot());
+  scene.setup->setStartState(start);
+  scene.setup->setGoal(makeLinkPoseGoal(si, robot,
+                                        spec.robot.pose.value_or(Eigen::Isometry3d::Identity()),
+                                        *spec.problem.goal->link_pose, spec.problem.planner, seed));
+}
+
 void setUpOmpl(PlanningScene& scene, bool free_flying, double robot_diagonal, double resolution,
                bool bounds_given) {
   const SceneSpec& spec = scene.spec;
@@ -420,7 +435,10 @@ void setUpOmpl(PlanningScene& scene, bool free_flying, double robot_diagonal, do
     }
     return state;
   };
-  if (spec.problem.start && spec.problem.goal) {
+  if (spec.problem.start && spec.problem.goal && spec.problem.goal->link_pose) {
+    setLinkPoseGoal(scene, toState(*spec.problem.start, "problem.start"));
+    requireWithinBounds(spec, model_robot, *spec.problem.start, "start", bounds_given);
+  } else if (spec.problem.start && spec.problem.goal) {
     const auto start = toState(*spec.problem.start, "problem.start");
     const auto goal = toState(*spec.problem.goal, "problem.goal");
     requireWithinBounds(spec, model_robot, *spec.problem.start, "start", bounds_given);

@@ -12,6 +12,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include "internal/scene_paths.h"
 #include "octomotion/error.h"
 #include "octomotion/input_limits.h"
 #include "octomotion/planner/scene/moveit_scene.h"
@@ -24,16 +25,6 @@ namespace {
 
 std::string readFile(const std::string& path) {
   return readWholeFile(path, "scene file", kMaxSceneFileBytes);
-}
-
-std::string resolvePath(const std::string& scene_path, const std::string& file) {
-  fs::path p(file);
-  if (p.is_relative()) {
-    // A scene named without a directory lives in the current one.
-    const fs::path dir = fs::path(scene_path).parent_path();
-    p = (dir.empty() ? fs::current_path() : fs::absolute(dir)) / p;
-  }
-  return p.lexically_normal().string();
 }
 
 std::string extensionOf(const std::string& path) {
@@ -392,6 +383,43 @@ void parseMoveItRequestKey(const YamlReader& r, const YAML::Node& node, SceneSpe
   if (request.time && !node["time"]) p.time = *request.time;
 }
 
+// problem.goal as a link pose: {link, position, orientation [x, y, z, w] | rpy, tolerance}.
+bool isLinkPoseGoal(const YAML::Node& node) {
+  return node.IsMap() && node["link"];
+}
+
+StateSpec linkPoseGoalFrom(const YamlReader& r, const YAML::Node& node, const std::string& field) {
+  r.allowOnly(node, field, {"link", "position", "orientation", "rpy", "tolerance"});
+  LinkPoseGoalSpec goal;
+  goal.link = r.string(node["link"], field + ".link");
+  if (!node["position"]) r.fail(field + ".position", node, "missing (the link's [x, y, z])");
+  goal.position = r.vector3(node["position"], field + ".position");
+  if (node["orientation"] && node["rpy"]) {
+    r.fail(field, node, "give one of orientation [x, y, z, w] or rpy [roll, pitch, yaw]");
+  }
+  if (node["orientation"]) {
+    const std::vector<double> q = r.numbers(node["orientation"], field + ".orientation", 4);
+    const auto unit = scaledUnitVector(Eigen::Vector4d(q[0], q[1], q[2], q[3]));
+    if (!unit) r.fail(field + ".orientation", node["orientation"], "quaternion has zero length");
+    goal.orientation = Eigen::Quaterniond((*unit)[3], (*unit)[0], (*unit)[1], (*unit)[2]);
+  } else if (node["rpy"]) {
+    const Eigen::Vector3d rpy = r.vector3(node["rpy"], field + ".rpy");
+    goal.orientation = Eigen::Quaterniond(rotationFromRpy(rpy.x(), rpy.y(), rpy.z()));
+  }
+  if (const YAML::Node t = node["tolerance"]) {
+    r.allowOnly(t, field + ".tolerance", {"position", "orientation"});
+    if (t["position"]) {
+      goal.position_tolerance = r.positive(t["position"], field + ".tolerance.position");
+    }
+    if (t["orientation"]) {
+      goal.orientation_tolerance = r.positive(t["orientation"], field + ".tolerance.orientation");
+    }
+  }
+  StateSpec s;
+  s.link_pose = goal;
+  return s;
+}
+
 void parseProblem(const YamlReader& r, const YAML::Node& node, SceneSpec& scene) {
   r.allowOnly(
       node, "problem",
@@ -405,7 +433,10 @@ void parseProblem(const YamlReader& r, const YAML::Node& node, SceneSpec& scene)
   }
   const bool joints = !scene.robot.urdf.empty();  // a URDF's states may name joints
   if (node["start"]) p.start = stateFrom(r, node["start"], "problem.start", joints);
-  if (node["goal"]) p.goal = stateFrom(r, node["goal"], "problem.goal", joints);
+  if (node["goal"]) {
+    p.goal = isLinkPoseGoal(node["goal"]) ? linkPoseGoalFrom(r, node["goal"], "problem.goal")
+                                          : stateFrom(r, node["goal"], "problem.goal", joints);
+  }
   if (const YAML::Node b = node["bounds"]) {
     r.allowOnly(b, "problem.bounds", {"min", "max"});
     const Eigen::Vector3d lo = r.vector3(b["min"], "problem.bounds.min");
@@ -430,6 +461,16 @@ void parseProblem(const YamlReader& r, const YAML::Node& node, SceneSpec& scene)
 }
 
 }  // namespace
+
+std::string resolvePath(const std::string& scene_path, const std::string& file) {
+  fs::path p(file);
+  if (p.is_relative()) {
+    // A scene named without a directory lives in the current one.
+    const fs::path dir = fs::path(scene_path).parent_path();
+    p = (dir.empty() ? fs::current_path() : fs::absolute(dir)) / p;
+  }
+  return p.lexically_normal().string();
+}
 
 Eigen::Matrix3d rotationFromRpy(double roll, double pitch, double yaw) {
   return (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) *
@@ -491,122 +532,6 @@ SceneSpec parseSceneYaml(const std::string& text, const std::string& path) {
     // Type conversion failures that slipped through (e.g. a bool that is not one).
     throw FileError(path,
                     "invalid value at line " + std::to_string(e.mark.line + 1) + ": " + e.msg);
-  }
-  return scene;
-}
-
-SceneSpec parseOmplAppCfg(const std::string& text, const std::string& path) {
-  // INI sections; later keys override earlier ones except in [planner] (a list).
-  std::map<std::string, std::string> problem;
-  std::vector<std::string> planners;
-  std::optional<std::string> time_limit;  // [benchmark] time_limit
-  std::string section;
-  std::istringstream lines(text);
-  std::string line;
-  int number = 0;
-  auto trim = [](std::string s) {
-    const auto b = s.find_first_not_of(" \t\r");
-    const auto e = s.find_last_not_of(" \t\r");
-    return b == std::string::npos ? std::string() : s.substr(b, e - b + 1);
-  };
-  while (std::getline(lines, line)) {
-    ++number;
-    line = trim(line);
-    if (line.empty() || line[0] == '#' || line[0] == ';') continue;
-    if (line.front() == '[') {
-      if (line.back() != ']') {
-        throw FileError(path, "line " + std::to_string(number) + ": unterminated section");
-      }
-      section = trim(line.substr(1, line.size() - 2));
-      continue;
-    }
-    const auto eq = line.find('=');
-    if (eq == std::string::npos) {
-      throw FileError(path, "line " + std::to_string(number) + ": expected key = value");
-    }
-    const std::string key = trim(line.substr(0, eq));
-    const std::string value = trim(line.substr(eq + 1));
-    if (section == "problem") problem[key] = value;
-    if (section == "planner" && key.find('.') == std::string::npos) planners.push_back(key);
-    if (section == "benchmark" && key == "time_limit") time_limit = value;
-  }
-  auto get = [&](const std::string& key) -> const std::string& {
-    const auto it = problem.find(key);
-    if (it == problem.end()) throw FileError(path, "[problem] " + key + ": missing");
-    return it->second;
-  };
-  // A finite number; `field` is how the error names the key.
-  auto parse = [&](const std::string& v, const std::string& field) {
-    char* end = nullptr;
-    const double d = std::strtod(v.c_str(), &end);
-    if (v.empty() || *end != '\0' || !std::isfinite(d)) {
-      throw FileError(path, field + ": expected a finite number, got '" + v + "'");
-    }
-    return d;
-  };
-  auto num = [&](const std::string& key) { return parse(get(key), "[problem] " + key); };
-  // A file name: an empty one would resolve to the .cfg's directory.
-  auto file = [&](const std::string& key) {
-    const std::string& v = get(key);
-    if (v.empty()) throw FileError(path, "[problem] " + key + ": empty, expected a file name");
-    return resolvePath(path, v);
-  };
-  SceneSpec scene;
-  scene.path = path;
-  scene.name = problem.count("name") ? problem["name"] : fs::path(path).stem().string();
-  scene.robot.mesh = file("robot");
-  scene.robot.keep_mesh_root_transform = true;  // OMPL.app keeps the Collada root transform
-  scene.robot.center_mesh_vertices = true;      // and centres the robot on its vertex mean
-  EnvironmentObject world;
-  world.name = "world";
-  world.kind = EnvironmentObject::Kind::kMesh;
-  world.file = file("world");
-  world.keep_mesh_root_transform = true;
-  scene.environment.push_back(world);
-  auto pose = [&](const std::string& prefix) {
-    Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
-    // One at a time: a missing key must be reported in x, y, z order.
-    const double x = num(prefix + ".x");
-    const double y = num(prefix + ".y");
-    const double z = num(prefix + ".z");
-    X.translation() = Eigen::Vector3d(x, y, z);
-    if (problem.count(prefix + ".theta")) {
-      Eigen::Vector3d axis;
-      axis.x() = num(prefix + ".axis.x");
-      axis.y() = num(prefix + ".axis.y");
-      axis.z() = num(prefix + ".axis.z");
-      const auto unit = scaledUnitVector(axis);
-      if (!unit) throw FileError(path, "[problem] " + prefix + ".axis: zero");
-      X.linear() = Eigen::AngleAxisd(num(prefix + ".theta"), *unit).toRotationMatrix();
-    }
-    StateSpec s;
-    s.pose = X;
-    return s;
-  };
-  scene.problem.start = pose("start");
-  scene.problem.goal = pose("goal");
-  // All six volume keys or none: a missing one must not drop the others silently.
-  bool any_volume_key = false;
-  for (const auto& kv : problem) any_volume_key |= kv.first.rfind("volume.", 0) == 0;
-  if (any_volume_key) {
-    Eigen::Vector3d lo, hi;
-    for (int a = 0; a < 3; ++a) {
-      const std::string axis(1, "xyz"[a]);
-      lo[a] = num("volume.min." + axis);
-      hi[a] = num("volume.max." + axis);
-    }
-    if (!(lo.array() < hi.array()).all()) {
-      throw FileError(path, "[problem] volume: min must be < max");
-    }
-    scene.problem.bounds = Eigen::AlignedBox3d(lo, hi);
-  }
-  if (time_limit) {
-    const double t = parse(*time_limit, "[benchmark] time_limit");
-    if (!(t > 0)) throw FileError(path, "[benchmark] time_limit: must be > 0");
-    if (t > kMaxPlanningSeconds) {
-      throw FileError(path, "[benchmark] time_limit: " + planningTimeTooLong(t));
-    }
-    scene.problem.time = t;
   }
   return scene;
 }
