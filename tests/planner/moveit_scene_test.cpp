@@ -366,8 +366,12 @@ TEST_F(MbmProblems, ASceneFileReadsAProblem) {
   const SceneInputs mounted = loadSceneInputs(dir_->file(
       "mounted.yaml", robot + "  pose: {xyz: [0.5, -1, 0.75], rpy: [0.1, 0, 2]}\n" + rest));
   EXPECT_EQ(plain.spec.problem.group, "panda_arm");
-  EXPECT_EQ(plain.spec.problem.start->named.size(), 8u);  // panda_finger_joint2 mimics joint1
+  EXPECT_EQ(plain.spec.problem.start->named.size(), 9u);  // as the request gives them
   EXPECT_EQ(plain.spec.problem.goal->named.size(), 7u);
+  // The planned joints are the group's: the start and goal vectors have its 7 values.
+  EXPECT_EQ(plain.robot->variableCount(), 7);
+  EXPECT_EQ(plain.spec.problem.start->joints.size(), 7u);
+  EXPECT_EQ(plain.spec.problem.goal->joints.size(), 7u);
   ASSERT_EQ(plain.spec.environment.size(), loadMoveItScene(p.scene).size());
   ASSERT_EQ(mounted.spec.environment.size(), plain.spec.environment.size());
   const Eigen::Isometry3d& M = *mounted.spec.robot.pose;

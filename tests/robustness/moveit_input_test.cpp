@@ -220,16 +220,21 @@ TEST_F(SceneFiles, FramesAreLinksOrTheModelFrameAndMimicsMustAgree) {
                                       "  - moveit_scene: ps.yaml\n"));
   ASSERT_EQ(in.spec.environment.size(), 1u);
   EXPECT_EQ(in.spec.environment[0].X_WO.translation(), Eigen::Vector3d(1, 2, 3));
-  write("r.yaml",
-        "group_name: arm\nstart_state: {joint_state: {name: [finger_joint1, finger_joint2], "
-        "position: [0.02, 0.03]}}\ngoal_constraints: [{joint_constraints: [{joint_name: joint1, "
-        "position: 1}]}]\n");
-  expectRejected(write("mimic.yaml", octo7() + "problem: {moveit_request: r.yaml}\n"),
-                 "joint 'finger_joint2' = 0.03 disagrees with its master 'finger_joint1' = 0.02");
+  write(
+      "r.yaml",
+      "group_name: arm\nstart_state: {joint_state: {name: [joint1, finger_joint1, finger_joint2], "
+      "position: [0, 0.02, 0.03]}}\ngoal_constraints: [{joint_constraints: [{joint_name: joint1, "
+      "position: 1}]}]\n");
+  write("arm.srdf",
+        "<robot name=\"octo7\"><group name=\"arm\"><joint name=\"joint1\"/></group></robot>\n");
+  expectRejected(
+      write("mimic.yaml", octo7() + "  srdf: arm.srdf\nproblem: {moveit_request: r.yaml}\n"),
+      "problem.start.finger_joint2: mimic joint 'finger_joint2' = 0.03, but its master "
+      "'finger_joint1' = 0.02");
   expectRejected(
       write("vector.yaml", octo7() + "environment:\n  - {frame: link3, sphere: {radius: 0.1}}\n"
                                      "problem: {start: [0, 0, 0]}\n"),
-      "problem.start: 3 values");
+      "problem.start: expected 8 joint values");
 }
 
 TEST_F(SceneFiles, AMountIsForFixedBaseRobotsAndFinite) {
