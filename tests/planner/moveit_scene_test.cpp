@@ -13,6 +13,7 @@
 
 #include <unistd.h>
 
+#include "mbm_problems.h"
 #include "octomotion/error.h"
 #include "octomotion/planner/ompl/planning_scene.h"
 #include "octomotion/planner/reference/fcl_collision_model.h"
@@ -305,40 +306,27 @@ goal_constraints:
 class MbmProblems : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    if (!fs::exists(kMbm)) return;
+    set_ = new test::MbmProblems();
     dir_ = new TempDir("octomotion_mbm_test");
-    const std::string command = "tar -xjf '" + kMbm + "' -C '" + dir_->path() + "'";
-    if (std::system(command.c_str()) != 0) return;
-    for (const auto& set : fs::directory_iterator(dir_->path() + "/problems")) {
-      for (const auto& f : fs::directory_iterator(set.path())) {
-        const std::string name = f.path().filename().string();
-        if (name.rfind("request", 0) != 0) continue;
-        std::string scene = f.path().parent_path().string() + "/scene" + name.substr(7);
-        if (!fs::exists(scene))
-          scene = f.path().parent_path().string() + "/scene_sensed" + name.substr(7);
-        problems_.push_back({set.path().filename().string(), scene, f.path().string()});
-      }
-    }
-    std::sort(problems_.begin(), problems_.end(),
-              [](const Problem& a, const Problem& b) { return a.request < b.request; });
   }
   static void TearDownTestSuite() {
     delete dir_;
+    delete set_;
     dir_ = nullptr;
+    set_ = nullptr;
   }
   void SetUp() override {
-    if (problems_.empty()) GTEST_SKIP() << "no MotionBenchMaker problems at " << kMbm;
+    if (set_->problems().empty()) GTEST_SKIP() << "no MotionBenchMaker problems at " << kMbm;
   }
-  struct Problem {
-    std::string set, scene, request;
-  };
+  using Problem = test::MbmProblem;
+  static inline test::MbmProblems* set_ = nullptr;
   static inline TempDir* dir_ = nullptr;
-  static inline std::vector<Problem> problems_;
+  static const std::vector<Problem>& problems() { return set_->problems(); }
 };
 
 TEST_F(MbmProblems, EveryProblemIsRead) {
-  EXPECT_EQ(problems_.size(), 700u);
-  for (const Problem& p : problems_) {
+  EXPECT_EQ(problems().size(), 700u);
+  for (const Problem& p : problems()) {
     const std::vector<EnvironmentObject> objects = loadMoveItScene(p.scene);
     EXPECT_GE(objects.size(), 1u) << p.scene;
     for (const EnvironmentObject& o : objects) {
@@ -357,7 +345,7 @@ TEST_F(MbmProblems, EveryProblemIsRead) {
 // request's problem with the mimic finger dropped, and a mount that carries the objects along.
 TEST_F(MbmProblems, ASceneFileReadsAProblem) {
   if (!fs::exists(kPanda + "/panda.urdf")) GTEST_SKIP() << "no Panda at " << kPanda;
-  const Problem& p = problems_.front();
+  const Problem& p = problems().front();
   const std::string robot =
       "robot:\n  urdf: " + kPanda + "/panda.urdf\n  srdf: " + kPanda + "/panda.srdf\n";
   const std::string rest = "environment:\n  - moveit_scene: " + p.scene +
@@ -390,7 +378,7 @@ TEST_F(MbmProblems, StartsAreCollisionFreeForFcl) {
   robot.loadSrdfFile(kPanda + "/panda.srdf");
   std::map<std::string, int> taken;
   int checked = 0, free = 0, colliding_objects = 0;
-  for (const Problem& p : problems_) {
+  for (const Problem& p : problems()) {
     if (taken[p.set]++ >= 15) continue;
     SceneSpec spec;
     spec.path = p.scene;
