@@ -18,6 +18,7 @@
 #include <ompl/util/Console.h>
 
 #include "fcl_reference.h"
+#include "forwarding_backend.h"
 #include "octomotion/planner/model/collision_backend.h"
 #include "octomotion/planner/model/octree_backend.h"
 #include "octomotion/planner/ompl/planning_scene.h"
@@ -288,30 +289,7 @@ TEST_P(CollisionBackendTest, CheckersAgree) {
 // A backend the library does not know gets the generic checker.
 TEST(CollisionBackend, UnknownBackendGetsTheGenericChecker) {
   const PlanningScene scene = loadScene("bookshelf");
-  struct Wrapped final : CollisionBackend {
-    explicit Wrapped(std::shared_ptr<const CollisionBackend> b) : inner(std::move(b)) {}
-    std::unique_ptr<BackendScratch> makeBackendScratch() const override {
-      return inner->makeBackendScratch();
-    }
-    bool inCollision(const double* q, std::size_t n, const Eigen::Isometry3d& X,
-                     BackendScratch& s) const override {
-      return inner->inCollision(q, n, X, s);
-    }
-    bool environmentInCollision(const double* q, std::size_t n, const Eigen::Isometry3d& X,
-                                BackendScratch& s) const override {
-      return inner->environmentInCollision(q, n, X, s);
-    }
-    bool selfInCollision(const double* q, std::size_t n, const Eigen::Isometry3d& X,
-                         BackendScratch& s) const override {
-      return inner->selfInCollision(q, n, X, s);
-    }
-    double clearance(BackendScratch& s) const override { return inner->clearance(s); }
-    ClearanceBound clearanceBound() const override { return inner->clearanceBound(); }
-    const RobotModel& robot() const override { return inner->robot(); }
-    std::uint64_t id() const override { return inner->id(); }
-    CheckerKind kind() const override { return inner->kind(); }
-    std::shared_ptr<const CollisionBackend> inner;
-  };
+  using Wrapped = test::ForwardingBackend;
   const auto backend = std::make_shared<const Wrapped>(
       std::make_shared<const OctreeBackend>(scene.model, CheckerPath::kFused));
   const ob::SpaceInformationPtr& si = scene.setup->getSpaceInformation();

@@ -18,6 +18,7 @@
 #include <utility>
 #include <vector>
 
+#include "forwarding_backend.h"
 #include "octomotion/planner/model/collision_model.h"
 #include "octomotion/planner/model/octree_backend.h"
 #include "octomotion/planner/reference/fcl_collision_model.h"
@@ -323,30 +324,7 @@ TEST_F(Explain, ThreadsSharingAModelGetTheSameExplanations) {
 // A backend of the user's own, which only answers the halves: the default explanation says which
 // half collides, without names, and agrees with inCollision too.
 TEST_F(Explain, ABackendThatCannotNameContactsExplainsItsHalves) {
-  struct Wrapped final : CollisionBackend {
-    explicit Wrapped(std::shared_ptr<const CollisionBackend> b) : inner(std::move(b)) {}
-    std::unique_ptr<BackendScratch> makeBackendScratch() const override {
-      return inner->makeBackendScratch();
-    }
-    bool inCollision(const double* q, std::size_t n, const Eigen::Isometry3d& X,
-                     BackendScratch& s) const override {
-      return inner->inCollision(q, n, X, s);
-    }
-    bool environmentInCollision(const double* q, std::size_t n, const Eigen::Isometry3d& X,
-                                BackendScratch& s) const override {
-      return inner->environmentInCollision(q, n, X, s);
-    }
-    bool selfInCollision(const double* q, std::size_t n, const Eigen::Isometry3d& X,
-                         BackendScratch& s) const override {
-      return inner->selfInCollision(q, n, X, s);
-    }
-    double clearance(BackendScratch& s) const override { return inner->clearance(s); }
-    ClearanceBound clearanceBound() const override { return inner->clearanceBound(); }
-    const RobotModel& robot() const override { return inner->robot(); }
-    std::uint64_t id() const override { return inner->id(); }
-    CheckerKind kind() const override { return inner->kind(); }
-    std::shared_ptr<const CollisionBackend> inner;
-  };
+  using Wrapped = test::ForwardingBackend;
   const RobotModel robot = loadPanda();
   std::mt19937_64 rng(2028);
   Backends b(robot, scatteredBoxes(rng));
