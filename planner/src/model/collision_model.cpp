@@ -21,6 +21,7 @@ OctreeCollisionModel::OctreeCollisionModel(RobotModel robot, const EnvironmentGe
     : id_(nextModelId()), robot_(std::move(robot)), options_(options) {
   const auto start = std::chrono::steady_clock::now();
   parts_ = detail::CollisionModelBuilder(robot_, environment, options_, report_).build();
+  parts_->world.objects = environment;  // for world updates (world_updates.cpp)
   report_.build_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
