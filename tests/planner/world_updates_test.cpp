@@ -374,6 +374,10 @@ void checkAgainstFcl(const RobotModel& robot, const Eigen::Isometry3d& X_WB) {
       if (f_self) {
         EXPECT_TRUE(o_self) << step;
       }
+      // The clearance (rebuilt lazily after the update) stays a lower bound on FCL's distance.
+      if (!o_env) {
+        EXPECT_LE(octree.clearanceLowerBound(so), fcl.environmentDistance(*sf) + 1e-9) << step;
+      }
       fcl_hits += f_env || f_self;
       octree_only += o && !(f_env || f_self);
       if (::testing::Test::HasFailure()) return;

@@ -84,6 +84,11 @@ double OctreeCollisionModel::clearanceLowerBound(const CheckScratch& scratch) co
 }
 
 double OctreeCollisionModel::clearanceLowerBoundPoints(const CheckScratch& scratch) const {
+  if (parts_->world.clearance_levels_once) {  // after a world update (world_updates.cpp)
+    std::call_once(*parts_->world.clearance_levels_once, [this] {
+      parts_->clearance = detail::ClearanceLevels::build(parts_->environment.tree);
+    });
+  }
   if (parts_->clearance.empty()) return clearanceLowerBoundTree(scratch);
   return parts_->clearance.lowerBound(parts_->links, scratch.robot);
 }

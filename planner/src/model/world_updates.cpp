@@ -24,6 +24,10 @@ namespace {
 
 const WarningSink kIgnoreWarnings = [](const std::string&) {};
 
+// Updates between two exact rebuilds of the environment's ClearanceGrid (the others lower it
+// near the change only).
+constexpr int kClearanceGridRefreshUpdates = 16;
+
 // One object's voxels, as EnvironmentGeometry::voxelize makes them.
 Octree voxelizeItem(const EnvironmentGeometry::Item& item, const WorldGrid& grid,
                     Rounding rounding) {
@@ -223,7 +227,17 @@ void OctreeCollisionModel::updateEnvironment(const std::vector<Eigen::AlignedBox
   }
   // What the tree and the objects feed, as the builder makes it.
   environment.cells = std::make_unique<const BlackCellGrid>(environment.tree);
-  environment.clearance = std::make_unique<const ClearanceGrid>(environment.tree);
+  // The clearance grid only needs lowering where voxels may have been added (a distance
+  // transform costs more than the rest of an update); a full one every
+  // kClearanceGridRefreshUpdates updates keeps it from loosening for good.
+  if (region && ++parts.world.clearance_grid_lowerings < kClearanceGridRefreshUpdates) {
+    auto lowered = std::make_unique<ClearanceGrid>(*environment.clearance);
+    lowered->addBlack(*region);
+    environment.clearance = std::move(lowered);
+  } else if (region) {
+    environment.clearance = std::make_unique<const ClearanceGrid>(environment.tree);
+    parts.world.clearance_grid_lowerings = 0;
+  }
   environment.box_W = detail::blackBox(environment.tree);
   environment.object_boxes_W.clear();
   environment.object_frame_boxes.clear();
@@ -239,7 +253,10 @@ void OctreeCollisionModel::updateEnvironment(const std::vector<Eigen::AlignedBox
   detail::buildSolidBoxes(environment, objects, grid, options_, report_.link_resolution);
   report_.environment_solid_boxes = environment.solid_boxes_W.size();
   if (options_.clearance == ClearanceMethod::kPointOctree) {
-    parts.clearance = detail::ClearanceLevels::build(environment.tree);
+    // Built by the first clearance query after the update (OctreeCollisionModel::
+    // clearanceLowerBoundPoints): planning without clearance never pays for it.
+    parts.clearance = detail::ClearanceLevels();
+    parts.world.clearance_levels_once = std::make_unique<std::once_flag>();
   }
   modelEveryLink(robot_, options_, report_, parts);
   updateEnvironmentTests(parts);

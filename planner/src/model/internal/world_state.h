@@ -4,6 +4,8 @@
 #pragma once
 
 #include <cstddef>
+#include <memory>
+#include <mutex>
 #include <vector>
 
 #include "octomotion/planner/scene/attached_object.h"
@@ -24,6 +26,10 @@ struct WorldState {
   // Every link with geometry has a slot: links the first build left out (they could reach
   // neither the environment nor a checked pair) are modelled at the first update.
   bool all_links_modelled = false;
+  int clearance_grid_lowerings = 0;  // since the environment's ClearanceGrid was last rebuilt
+  // Set by an update: the clearance levels (ClearanceMethod::kPointOctree) are built again by
+  // the first clearance query after it, once, whichever thread asks.
+  std::unique_ptr<std::once_flag> clearance_levels_once;
 };
 
 }  // namespace octomotion::detail
