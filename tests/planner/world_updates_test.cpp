@@ -334,9 +334,22 @@ TEST(WorldUpdates, RefusedWithClearErrors) {
   held.object.name = "tray";
   held.link = "no_such_link";
   expectError([&] { model.attachObject(held); }, "no_such_link");
-  // Out of the robot's reach altogether: nothing to model, accepted.
+  // Out of the robot's reach altogether: nothing to model, accepted...
   model.addObject(box("far", {0.1, 0.1, 0.1}, {30, 0, 0}));
   EXPECT_TRUE(model.environment() == before);
+  // ...until a carried object could reach it.
+  const std::uint64_t with_far = model.id();
+  held.object = box("pole", {62, 0.02, 0.02}, {0, 0, 0});
+  held.link = "hand";
+  try {
+    model.attachObject(held);
+    ADD_FAILURE() << "a pole reaching an unmodelled object was attached";
+  } catch (const InvalidArgument& e) {
+    EXPECT_NE(std::string(e.what()).find("can reach the part of 'far'"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_EQ(model.id(), with_far);
+  EXPECT_TRUE(model.attachedObjects().empty());
   // Exact primitives are not updated in place.
   CollisionModelOptions exact = tight;
   exact.exact_primitives = true;

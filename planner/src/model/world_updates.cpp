@@ -101,6 +101,27 @@ void indexSelfBroadPhase(detail::SelfCollision& self, const detail::LinkModels& 
   report.self_links = m;
 }
 
+// How far a link's origin can be from the base origin (CollisionModelBuilder::boundReach's
+// chain: joint offsets and prismatic travel).
+double originReach(const RobotModel& robot, int link) {
+  std::vector<double> reach(static_cast<std::size_t>(robot.linkCount()), 0.0);
+  for (const Joint& j : robot.joints()) {
+    double travel = 0;
+    if (j.type == JointType::kPrismatic) {
+      if (j.isMimic()) {
+        const Joint& m = robot.joint(j.mimic_master);
+        travel = std::abs(j.mimic_multiplier) * std::max(std::abs(m.lower), std::abs(m.upper)) +
+                 std::abs(j.mimic_offset);
+      } else {
+        travel = std::max(std::abs(j.lower), std::abs(j.upper));
+      }
+    }
+    reach[static_cast<std::size_t>(j.child_link)] =
+        reach[static_cast<std::size_t>(j.parent_link)] + j.X_PJ.translation().norm() + travel;
+  }
+  return reach[static_cast<std::size_t>(link)];
+}
+
 void refreshSelfVoxels(detail::LinkModels& links) {
   links.self_voxels.clear();
   for (const detail::LinkTree& lt : links.links) links.self_voxels.push_back(&lt.forSelf());
@@ -179,7 +200,9 @@ void OctreeCollisionModel::requireUpdatable() const {
 }
 
 void OctreeCollisionModel::requireInUniverse(const EnvironmentGeometry::Item& item) const {
-  const Eigen::AlignedBox3d reachable = item.bounds_W.intersection(report_.reach_W);
+  Eigen::AlignedBox3d reach_W = report_.reach_W;
+  if (!parts_->world.attached_reach_W.isEmpty()) reach_W.extend(parts_->world.attached_reach_W);
+  const Eigen::AlignedBox3d reachable = item.bounds_W.intersection(reach_W);
   if (reachable.isEmpty()) return;  // the robot never reaches it: nothing to model
   const WorldGrid& grid = parts_->environment.tree.grid();
   const Eigen::AlignedBox3d universe(grid.origin(), grid.origin().array() + grid.sideMetres());
@@ -344,7 +367,7 @@ void OctreeCollisionModel::attachObject(const AttachedObject& object, const Warn
     allowed[static_cast<std::size_t>(robot_.linkIndex(touch))] = true;
   }
   detail::AttachedEntry entry{object, EnvironmentGeometry::loadItem(object.object, warnings), link,
-                              0};
+                              0, Eigen::AlignedBox3d()};
   // Its geometry as a link's: one element at X_LO.
   Link geometry;
   geometry.name = name;
@@ -363,7 +386,36 @@ void OctreeCollisionModel::attachObject(const AttachedObject& object, const Warn
   if (lt.voxels.source.empty()) {
     throw InvalidArgument("attach: '" + name + "' has no voxels at the link resolution");
   }
+  // Where the carried object can go: it may reach objects beyond the robot's own reach, whose
+  // parts there must then lie in the universe (the rest of them was never modelled).
+  double extent = 0;
+  const Eigen::AlignedBox3d box_L(lt.voxels.center_L - lt.voxels.half_L,
+                                  lt.voxels.center_L + lt.voxels.half_L);
+  for (int c = 0; c < 8; ++c) {
+    extent = std::max(extent, box_L.corner(static_cast<Eigen::AlignedBox3d::CornerType>(c)).norm());
+  }
+  const double carried = originReach(robot_, link) + extent;
+  Eigen::AlignedBox3d base =
+      options_.base_position_bounds && robot_.isFreeFlying()
+          ? *options_.base_position_bounds
+          : Eigen::AlignedBox3d(options_.X_WB.translation(), options_.X_WB.translation());
+  const Eigen::AlignedBox3d carried_W(base.min().array() - carried, base.max().array() + carried);
+  {
+    const WorldGrid& grid = parts_->environment.tree.grid();
+    const Eigen::AlignedBox3d universe(grid.origin(), grid.origin().array() + grid.sideMetres());
+    for (const EnvironmentGeometry::Item& item : world.objects.items()) {
+      if (!universe.contains(item.bounds_W.intersection(carried_W)) &&
+          !item.bounds_W.intersection(carried_W).isEmpty()) {
+        throw InvalidArgument("attach: '" + name + "' carried by " + object.link +
+                              " can reach the part of '" + item.spec.name +
+                              "' outside the model's universe; build the model with "
+                              "CollisionModelOptions::fit_universe_to_reach or attach a smaller "
+                              "object");
+      }
+    }
+  }
   modelEveryLink(robot_, options_, report_, *parts_);
+  world.attached_reach_W.extend(carried_W);
   detail::LinkModels& links = parts_->links;
   const std::size_t slot = links.links.size();
   links.links.push_back(std::move(lt));
@@ -378,6 +430,7 @@ void OctreeCollisionModel::attachObject(const AttachedObject& object, const Warn
     self.pairs.push_back({s, slot, reach * reach, nullptr});
   }
   entry.slot = slot;
+  entry.carried_W = carried_W;
   world.attached.push_back(std::move(entry));
   updateEnvironment({});
 }
@@ -425,7 +478,11 @@ void OctreeCollisionModel::detachObject(const std::string& name,
     pairs.push_back(p);
   }
   parts_->self.pairs = std::move(pairs);
-  for (detail::AttachedEntry& a : world.attached) a.slot = shifted(a.slot);
+  world.attached_reach_W.setEmpty();
+  for (detail::AttachedEntry& a : world.attached) {
+    a.slot = shifted(a.slot);
+    world.attached_reach_W.extend(a.carried_W);
+  }
   if (left) {
     const Eigen::AlignedBox3d box = left->bounds_W;
     world.objects.add(std::move(*left));
