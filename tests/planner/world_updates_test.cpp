@@ -5,11 +5,13 @@
 // octree within the conservative contract (never a contact FCL finds and the octree misses).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <memory>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "joint_states.h"
@@ -478,6 +480,44 @@ TEST(WorldUpdates, PlanningSceneRefusalLeavesItUsable) {
   configurationToState(scene.model->robot(), scene.spec.problem.start->joints,
                        Eigen::Isometry3d::Identity(), state.get());
   EXPECT_TRUE(scene.setup->getSpaceInformation()->isValid(state.get()));
+}
+
+}  // namespace
+}  // namespace octomotion
+
+namespace octomotion {
+namespace {
+
+// After an update the clearance levels are rebuilt by the first clearance query, whichever
+// thread asks: threads asking at once get the answers one thread gets afterwards, never above a
+// fresh model's (the levels come from the same tree; the updated model may bound links a fresh
+// build leaves out because they cannot reach the environment).
+TEST(WorldUpdates, ClearanceAfterAnUpdateFromManyThreads) {
+  const RobotModel robot = loadOcto7();
+  const CollisionModelOptions options = changingWorld(0.02);
+  OctreeCollisionModel model(robot, EnvironmentGeometry::load(tableScene()), options);
+  model.addObject(box("crate", {0.2, 0.2, 0.2}, {0.3, 0.4, 0.5}));
+  const auto states = test::uniformJointStates(robot, 64, 21);
+  const Eigen::Isometry3d I = Eigen::Isometry3d::Identity();
+  auto bounds = [&](const OctreeCollisionModel& m) {
+    std::vector<double> out;
+    CheckScratch scratch = m.makeScratch();
+    for (const auto& q : states) {
+      robot.forwardKinematics(q.data(), q.size(), scratch.robot, I);
+      out.push_back(m.clearanceLowerBoundPoints(scratch));
+    }
+    return out;
+  };
+  std::vector<std::vector<double>> per_thread(4);
+  std::vector<std::thread> threads;
+  for (auto& out : per_thread) threads.emplace_back([&] { out = bounds(model); });
+  for (std::thread& t : threads) t.join();
+  const std::vector<double> after = bounds(model);
+  for (const auto& out : per_thread) EXPECT_EQ(out, after);
+  const OctreeCollisionModel fresh(robot, model.objects(), options);
+  const std::vector<double> fresh_bounds = bounds(fresh);
+  for (std::size_t i = 0; i < after.size(); ++i) EXPECT_LE(after[i], fresh_bounds[i]) << i;
+  EXPECT_GT(*std::max_element(after.begin(), after.end()), 0.0);
 }
 
 }  // namespace
