@@ -18,7 +18,7 @@ fi
 out=$root/docs/benchmarks.md
 all=(differential motion octree builders translate primitive_contact planner_environment
   planner_selfcollision planner_clearance pointoctree self_pair_tables check_breakdown plan_split
-  validity_checker broadphase tradeoff)
+  validity_checker broadphase world_updates tradeoff)
 selected=("$@")
 ((${#selected[@]})) || selected=("${all[@]}")
 
@@ -50,6 +50,8 @@ add plan_split "Where a plan's time goes, bookshelf at 1 cm (planner_plan_split_
 add validity_checker "The OMPL validity checker per scene and checker (planner_validity_checker_bench)" \
   planner_validity_checker_bench "$gbench"
 add broadphase "N-objects octree broad phase (broadphase_bench)" broadphase_bench ""
+add world_updates "A world that changes between plans, the Panda at 1 cm (planner_world_updates_bench)" \
+  planner_world_updates_bench "$gbench"
 add tradeoff "Speed/accuracy trade study (tradeoff_bench; docs/trade-off.md)" tradeoff_bench \
   "--out-dir $build/tradeoff-results"
 

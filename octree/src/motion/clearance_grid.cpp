@@ -105,4 +105,32 @@ ClearanceGrid::ClearanceGrid(const Octree& tree, std::size_t max_cells) {
   }
 }
 
+void ClearanceGrid::addBlack(const VoxelBounds& added) {
+  // The cells holding `added`, grown by one cell as the constructor grows occupied cells; each
+  // cell's centre-to-centre distance to that box (in cells) bounds its distance to every black
+  // voxel there, rounded down to quarters as the constructor rounds.
+  const std::int64_t n = static_cast<std::int64_t>(cells_);
+  auto cell = [this](std::uint32_t v) { return static_cast<std::int64_t>(v >> level_); };
+  const std::int64_t lo[3] = {cell(added.min.x) - 1, cell(added.min.y) - 1, cell(added.min.z) - 1};
+  const std::int64_t hi[3] = {cell(added.max.x) + 1, cell(added.max.y) + 1, cell(added.max.z) + 1};
+  auto gap = [](std::int64_t c, std::int64_t l, std::int64_t h) {
+    const std::int64_t d = c < l ? l - c : c > h ? c - h : 0;
+    return static_cast<double>(d * d);
+  };
+  std::size_t i = 0;
+  for (std::int64_t z = 0; z < n; ++z) {
+    const double dz = gap(z, lo[2], hi[2]);
+    for (std::int64_t y = 0; y < n; ++y) {
+      const double dyz = dz + gap(y, lo[1], hi[1]);
+      for (std::int64_t x = 0; x < n; ++x, ++i) {
+        const double d2 = dyz + gap(x, lo[0], hi[0]);
+        const double s = steps_[i];
+        if (kStepsPerCell * kStepsPerCell * d2 >= s * s) continue;  // no lower: skip the root
+        const double q = std::floor(kStepsPerCell * std::sqrt(d2));
+        if (q < s) steps_[i] = static_cast<std::uint8_t>(q);
+      }
+    }
+  }
+}
+
 }  // namespace octomotion

@@ -29,9 +29,10 @@ OctreeCollisionModel::OctreeCollisionModel(RobotModel robot,
   if (!environment) throw InvalidArgument("OctreeCollisionModel: no environment");
   const auto start = std::chrono::steady_clock::now();
   parts_ = detail::CollisionModelBuilder(robot_, *environment, options_, report_).build();
+  parts_->world.objects = *environment;  // for world updates (world_updates.cpp)
   report_.build_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  explain_ = std::make_unique<detail::ExplainData>(std::move(environment));
+  resetExplainData();
 }
 
 OctreeCollisionModel::OctreeCollisionModel(OctreeCollisionModel&&) noexcept = default;
@@ -92,12 +93,24 @@ double OctreeCollisionModel::clearanceLowerBound(const CheckScratch& scratch) co
 }
 
 double OctreeCollisionModel::clearanceLowerBoundPoints(const CheckScratch& scratch) const {
+  if (parts_->world.clearance_levels_once) {  // after a world update (world_updates.cpp)
+    std::call_once(*parts_->world.clearance_levels_once, [this] {
+      parts_->clearance = detail::ClearanceLevels::build(parts_->environment.tree);
+    });
+  }
   if (parts_->clearance.empty()) return clearanceLowerBoundTree(scratch);
   return parts_->clearance.lowerBound(parts_->links, scratch.robot);
 }
 
 double OctreeCollisionModel::clearanceLowerBoundTree(const CheckScratch& scratch) const {
   return detail::clearanceLowerBoundTree(parts_->links, parts_->environment.tree, scratch.robot);
+}
+
+// Explanations name the objects of the current world (world updates call this again); the data
+// points into parts_, which lives as long as the model.
+void OctreeCollisionModel::resetExplainData() {
+  explain_ = std::make_unique<detail::ExplainData>(std::shared_ptr<const EnvironmentGeometry>(
+      std::shared_ptr<const EnvironmentGeometry>(), &parts_->world.objects));
 }
 
 }  // namespace octomotion

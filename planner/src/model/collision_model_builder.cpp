@@ -6,6 +6,7 @@
 #include <sstream>
 #include <string>
 
+#include "internal/environment_boxes.h"
 #include "octomotion/motion/pose.h"
 #include "octomotion/octree/shapes.h"
 #include "octomotion/octree/voxelize.h"
@@ -17,12 +18,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double secondsSince(Clock::time_point t) {
   return std::chrono::duration<double>(Clock::now() - t).count();
-}
-
-// Every entry 0 or ±1: the rotation only permutes and flips the axes, so boxes along them are
-// exactly axis-aligned in the world.
-bool isAxisPermutation(const Eigen::Matrix3d& R) {
-  return (R.array() == 0 || R.array().abs() == 1).all();
 }
 
 bool isPrimitive(const EnvironmentGeometry::Item& item) {
@@ -78,7 +73,7 @@ CollisionModelBuilder::CollisionModelBuilder(const RobotModel& robot,
       report_(report),
       meshes_(options.keep_mesh_root_transform, options.center_mesh_vertices) {}
 
-std::unique_ptr<const CollisionModelParts> CollisionModelBuilder::build() {
+std::unique_ptr<CollisionModelParts> CollisionModelBuilder::build() {
   checkOptions();
   measureLinkGeometry();
   boundReach();
@@ -208,7 +203,9 @@ void CollisionModelBuilder::boundReach() {
 // voxelized, so an impossible resolution fails at once.
 void CollisionModelBuilder::fitUniverse() {
   region_ = report_.reach_W;
-  if (const auto env_box = scene_.bounds()) {
+  std::optional<Eigen::AlignedBox3d> env_box;
+  if (!options_.fit_universe_to_reach) env_box = scene_.bounds();
+  if (env_box) {
     const Eigen::AlignedBox3d overlap = env_box->intersection(report_.reach_W);
     if (!overlap.isEmpty()) {
       // No margin around it: the universe's minimum corner is then the lowest face of the
@@ -270,7 +267,9 @@ void CollisionModelBuilder::buildEnvironmentTree() {
   const auto t0 = Clock::now();
   Octree& tree = environment_.tree;
   tree = scene_.voxelize(grid_, options_.rounding, &report_.environment, options_.warnings);
-  for (int shift = 1; shift < kOriginShifts; ++shift) {
+  // A universe fitted to the reach keeps its origin: the objects it will hold are not known.
+  const int shifts = options_.fit_universe_to_reach ? 1 : kOriginShifts;
+  for (int shift = 1; shift < shifts; ++shift) {
     const Eigen::Vector3d origin =
         region_.min() - Eigen::Vector3d::Constant(shift * options_.resolution);
     if (!((region_.max() - origin).maxCoeff() <= grid_.sideMetres())) break;
@@ -310,11 +309,6 @@ void CollisionModelBuilder::setUpExactPrimitives() {
   }
   exact_ =
       options_.exact_primitives && options_.rounding == Rounding::kConservative && any_primitive;
-  auto blackBox = [this](const Octree& tree) {
-    const auto b = tree.bounds();
-    return b ? Eigen::AlignedBox3d(grid_.cubeMin(Cube{0, b->min}), grid_.cubeMax(Cube{0, b->max}))
-             : Eigen::AlignedBox3d();
-  };
   if (!exact_) {
     environment_.box_W = blackBox(environment_.tree);
     return;
@@ -338,99 +332,19 @@ void CollisionModelBuilder::setUpExactPrimitives() {
   environment_.other_objects = std::move(v);
 }
 
-// Object boxes for the environment pre-test: every voxel an object marks (any rounding, any
-// kind) overlaps the object's box, so it lies within one voxel of it. With exact primitives a
-// link leaf's bounding sphere that meets the object reaches past the link's box by less than a
-// link voxel: the boxes grow by the larger of the two voxels and keep the parts outside the
-// universe.
+// Object boxes for the environment pre-test (environment_boxes.cpp).
 void CollisionModelBuilder::buildObjectBoxes() {
-  const double growth = exact_ ? std::max(grid_.voxelSize(), link_res_) : grid_.voxelSize();
-  const Eigen::Vector3d one_voxel = Eigen::Vector3d::Constant(growth * (1 + 1e-9));
-  const Eigen::AlignedBox3d universe_W(grid_.origin(), grid_.origin().array() + grid_.sideMetres());
-  for (const EnvironmentGeometry::Item& item : scene_.items()) {
-    if (item.bounds_W.isEmpty()) continue;
-    const Eigen::AlignedBox3d box(item.bounds_W.min() - one_voxel, item.bounds_W.max() + one_voxel);
-    if (!exact_ && box.intersection(universe_W).isEmpty()) continue;
-    environment_.object_boxes_W.push_back(box);
-    ObjectFrameBox frame_box;
-    const Eigen::Matrix3d& R_WO = item.spec.X_WO.linear();
-    if (isPrimitive(item) && !std::holds_alternative<Sphere>(item.spec.primitive) &&
-        !isAxisPermutation(R_WO)) {
-      frame_box.tilted = true;
-      frame_box.centre_W = item.spec.X_WO.translation();
-      frame_box.R_OW = R_WO.transpose();
-      frame_box.half =
-          boxHalfSides(item.spec.primitive) + Eigen::Vector3d::Constant(std::sqrt(3.0) * growth);
-    }
-    environment_.object_frame_boxes.push_back(frame_box);
-  }
+  detail::buildObjectBoxes(environment_, scene_, grid_, link_res_, exact_);
 }
 
-// kAuto picks the object boxes for 2 ... kObjectBoxesMaxObjects objects; the environment box
-// drops them. The kept boxes' per-axis arrays are precomputed for the pre-test's first stage.
 void CollisionModelBuilder::resolveEnvironmentPreTest() {
-  std::vector<Eigen::AlignedBox3d>& boxes = environment_.object_boxes_W;
-  switch (options_.environment_pre_test) {
-    case EnvironmentPreTest::kAuto:
-      report_.environment_pre_test = boxes.size() >= 2 && boxes.size() <= kObjectBoxesMaxObjects
-                                         ? EnvironmentPreTest::kObjectBoxes
-                                         : EnvironmentPreTest::kEnvironmentBox;
-      break;
-    default:
-      report_.environment_pre_test = options_.environment_pre_test;
-  }
-  if (report_.environment_pre_test != EnvironmentPreTest::kObjectBoxes) {
-    boxes.clear();
-    environment_.object_frame_boxes.clear();
-  }
-  report_.environment_object_boxes = boxes.size();
-  const double tie_margin = kMotionTieTolerance * grid_.voxelSize();
-  for (const Eigen::AlignedBox3d& box : boxes) {
-    for (std::size_t a = 0; a < 3; ++a) {
-      const auto axis = static_cast<Eigen::Index>(a);
-      environment_.object_centre_W[a].push_back(0.5 * (box.min()[axis] + box.max()[axis]));
-      environment_.object_reach_W[a].push_back(0.5 * (box.max()[axis] - box.min()[axis]) +
-                                               tie_margin);
-    }
-  }
+  report_.environment_pre_test =
+      detail::resolveEnvironmentPreTest(environment_, options_.environment_pre_test, grid_);
+  report_.environment_object_boxes = environment_.object_boxes_W.size();
 }
 
-// Solid boxes for the links' core boxes (conservative rounding): each primitive's inscribed
-// box, its part inside the universe (a moved link voxel outside it is dropped), shrunk like the
-// cores.
 void CollisionModelBuilder::buildSolidBoxes() {
-  if (!options_.core_boxes || options_.rounding != Rounding::kConservative) return;
-  const double shrink = kSolidShrink * std::max(options_.resolution, link_res_);
-  const Eigen::AlignedBox3d inner_universe_W(grid_.origin().array() + shrink,
-                                             grid_.origin().array() + grid_.sideMetres() - shrink);
-  for (const EnvironmentGeometry::Item& item : scene_.items()) {
-    if (!isPrimitive(item)) continue;
-    const Eigen::Vector3d half_O = inscribedBoxHalfSides(item.spec.primitive);
-    const Eigen::Matrix3d& R_WO = item.spec.X_WO.linear();
-    const Eigen::Vector3d extent_W = R_WO.cwiseAbs() * half_O;
-    const Eigen::AlignedBox3d aabb_W(item.spec.X_WO.translation() - extent_W,
-                                     item.spec.X_WO.translation() + extent_W);
-    SolidBox solid;
-    if (inner_universe_W.contains(aabb_W)) {
-      solid.centre_W = item.spec.X_WO.translation();
-      solid.R_OW = R_WO.transpose();
-      solid.half = half_O - Eigen::Vector3d::Constant(shrink);
-      solid.extent_W = extent_W;
-    } else if (isAxisPermutation(R_WO)) {
-      // Exactly axis-aligned (a box crossing the universe's side, e.g. a floor beyond the
-      // robot's reach): the part inside the universe, which is its own world box.
-      const Eigen::AlignedBox3d inside = aabb_W.intersection(inner_universe_W);
-      if (inside.isEmpty()) continue;
-      solid.centre_W = inside.center();
-      solid.R_OW = Eigen::Matrix3d::Identity();
-      solid.half = inside.sizes() / 2 - Eigen::Vector3d::Constant(shrink);
-      solid.extent_W = inside.sizes() / 2;
-    } else {
-      continue;  // rotated and leaving the universe
-    }
-    if (!(solid.half.array() > 0).all()) continue;
-    environment_.solid_boxes_W.push_back(solid);
-  }
+  detail::buildSolidBoxes(environment_, scene_, grid_, options_, link_res_);
   report_.environment_solid_boxes = environment_.solid_boxes_W.size();
 }
 

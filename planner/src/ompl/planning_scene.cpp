@@ -299,6 +299,7 @@ PlanningScene loadPlanningScene(const std::string& scene_path, const SceneOverri
   options.self_link_resolution = spec.octree.self_link_resolution;
   options.self_pair_tables = spec.octree.self_pair_tables;
   options.exact_primitives = spec.octree.exact_primitives;
+  options.fit_universe_to_reach = overrides.fit_universe_to_reach;
   options.rounding = spec.octree.rounding;
   if (spec.octree.max_surface_voxels) options.max_surface_voxels = *spec.octree.max_surface_voxels;
   options.base_position_bounds = spec.problem.bounds;
@@ -309,7 +310,7 @@ PlanningScene loadPlanningScene(const std::string& scene_path, const SceneOverri
   const bool free_flying = robot->isFreeFlying();
   try {
     scene.model =
-        std::make_shared<const OctreeCollisionModel>(std::move(*robot), scene.environment, options);
+        std::make_shared<OctreeCollisionModel>(std::move(*robot), scene.environment, options);
   } catch (const InvalidArgument& e) {
     // Most model errors depend on the resolution (depth, memory guard): say where it came from.
     throw InvalidArgument(spec.path + ": at " + inputs.resolution_field + " " +

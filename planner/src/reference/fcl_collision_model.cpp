@@ -1,6 +1,8 @@
 #include "octomotion/planner/reference/fcl_collision_model.h"
 
+#include <algorithm>
 #include <limits>
+#include <optional>
 #include <string>
 
 #include <fcl/broadphase/broadphase_dynamic_AABB_tree.h>
@@ -20,10 +22,41 @@ struct FclCollisionModel::Geometry {
       : robot(model, keep_mesh_root_transform, center_mesh_vertices) {}
   fcl_internal::RobotGeometry robot;
   std::vector<std::unique_ptr<fcl::CollisionObjectd>> environment;
-  std::vector<std::string> environment_names;  // parallel to environment (explain)
   // Broad phase over the environment objects, built once; queries only read it.
   fcl::DynamicAABBTreeCollisionManagerd environment_manager;
+  EnvironmentGeometry objects;  // parallel to `environment`: updates and explanations name them
+  struct Attached {
+    std::string name;
+    std::size_t element = 0;  // in robot's elements
+    EnvironmentGeometry::Item item;
+    int link = -1;
+  };
+  std::vector<Attached> attached;
 };
+
+namespace {
+
+std::unique_ptr<fcl::CollisionObjectd> environmentObject(const EnvironmentGeometry::Item& item) {
+  Geom g;
+  switch (item.spec.kind) {
+    case EnvironmentObject::Kind::kPrimitive:
+      g = fcl_internal::shapeOf(item.spec.primitive);
+      break;
+    case EnvironmentObject::Kind::kMesh:
+      g = fcl_internal::meshOf(item.mesh);
+      break;
+    default:
+      throw InvalidArgument(item.spec.name +
+                            ": the FCL checker takes primitives and meshes only (use "
+                            "fcl-octomap for maps and point clouds)");
+  }
+  auto object = std::make_unique<fcl::CollisionObjectd>(g, item.spec.X_WO.rotation(),
+                                                        item.spec.X_WO.translation());
+  fcl_internal::setTightAabb(*object);
+  return object;
+}
+
+}  // namespace
 
 struct FclCollisionModel::Scratch final : BackendScratch {
   fcl_internal::RobotScratch robot;
@@ -40,30 +73,14 @@ FclCollisionModel::FclCollisionModel(const RobotModel& robot,
           std::make_unique<Geometry>(robot_, keep_mesh_root_transform, center_mesh_vertices)) {
   std::vector<fcl::CollisionObjectd*> objects;
   for (const EnvironmentGeometry::Item& item : environment.items()) {
-    Geom g;
-    switch (item.spec.kind) {
-      case EnvironmentObject::Kind::kPrimitive:
-        g = fcl_internal::shapeOf(item.spec.primitive);
-        break;
-      case EnvironmentObject::Kind::kMesh:
-        g = fcl_internal::meshOf(item.mesh);
-        break;
-      default:
-        throw InvalidArgument(item.spec.name +
-                              ": the FCL checker takes primitives and meshes only (use "
-                              "fcl-octomap for maps and point clouds)");
-    }
-    auto object = std::make_unique<fcl::CollisionObjectd>(g, item.spec.X_WO.rotation(),
-                                                          item.spec.X_WO.translation());
-    fcl_internal::setTightAabb(*object);
-    objects.push_back(object.get());
-    geometry_->environment.push_back(std::move(object));
-    geometry_->environment_names.push_back(item.spec.name);
+    geometry_->environment.push_back(environmentObject(item));
+    objects.push_back(geometry_->environment.back().get());
   }
   if (!objects.empty()) {
     geometry_->environment_manager.registerObjects(objects);
     geometry_->environment_manager.setup();
   }
+  geometry_->objects = environment;
 }
 
 FclCollisionModel::~FclCollisionModel() = default;
@@ -120,6 +137,10 @@ double FclCollisionModel::clearance(BackendScratch& scratch) const {
 
 void FclCollisionModel::setConfiguration(const double* q, std::size_t q_size,
                                          const Eigen::Isometry3d& X_WB, Scratch& s) const {
+  if (s.owner != id_) {  // made before a world update: the robot's elements may differ
+    geometry_->robot.initScratch(robot_, s.robot);
+    s.owner = id_;
+  }
   geometry_->robot.pose(robot_, q, q_size, robot_.isFreeFlying() ? X_WB : mount_, s.robot);
 }
 
@@ -211,7 +232,7 @@ void FclCollisionModel::explainContacts(const double* q, std::size_t q_size,
       InvalidityReason r;
       r.kind = InvalidityReason::Kind::kEnvironment;
       r.link = robot_.link(link).name;
-      r.other = geometry_->environment_names[o];
+      r.other = geometry_->objects.items()[o].spec.name;
       explanation.reasons.push_back(r);
       if (!all) return;
     }
@@ -227,6 +248,108 @@ void FclCollisionModel::explainContacts(const double* q, std::size_t q_size,
 
 double FclCollisionModel::selfDistance(Scratch& s, double cap) const {
   return geometry_->robot.selfDistance(s.robot, cap);
+}
+
+// ---- World updates.
+
+const EnvironmentGeometry& FclCollisionModel::objects() const {
+  return geometry_->objects;
+}
+
+void FclCollisionModel::addObject(EnvironmentGeometry::Item item) {
+  for (const Geometry::Attached& a : geometry_->attached) {
+    if (a.name == item.spec.name) {
+      throw InvalidArgument("environment: '" + item.spec.name + "' names an attached object");
+    }
+  }
+  auto object = environmentObject(item);
+  geometry_->objects.add(std::move(item));
+  geometry_->environment_manager.registerObject(object.get());
+  geometry_->environment.push_back(std::move(object));
+  id_ = nextModelId();
+}
+
+namespace {
+
+std::size_t indexOf(const EnvironmentGeometry& objects, const std::string& name) {
+  const auto& items = objects.items();
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    if (items[i].spec.name == name) return i;
+  }
+  throw InvalidArgument("environment: no object named '" + name + "'");
+}
+
+}  // namespace
+
+void FclCollisionModel::removeObject(const std::string& name) {
+  const std::size_t i = indexOf(geometry_->objects, name);
+  geometry_->objects.remove(name);  // items keep their order: `environment` stays parallel
+  geometry_->environment_manager.unregisterObject(geometry_->environment[i].get());
+  geometry_->environment.erase(geometry_->environment.begin() + static_cast<std::ptrdiff_t>(i));
+  id_ = nextModelId();
+}
+
+void FclCollisionModel::moveObject(const std::string& name, const Eigen::Isometry3d& X_WO) {
+  const std::size_t i = indexOf(geometry_->objects, name);
+  geometry_->objects.setPose(name, X_WO);
+  fcl::CollisionObjectd& object = *geometry_->environment[i];
+  object.setTransform(X_WO.rotation(), X_WO.translation());
+  fcl_internal::setTightAabb(object);
+  geometry_->environment_manager.update(&object);
+  id_ = nextModelId();
+}
+
+void FclCollisionModel::attachObject(const AttachedObject& object, const WarningSink& warnings) {
+  const std::string& name = object.object.name;
+  if (geometry_->objects.find(name) != nullptr) {
+    throw InvalidArgument("attach: '" + name + "' names an object of the world");
+  }
+  for (const Geometry::Attached& a : geometry_->attached) {
+    if (a.name == name) {
+      throw InvalidArgument("attach: an object named '" + name + "' is attached already");
+    }
+  }
+  if (object.object.kind != EnvironmentObject::Kind::kPrimitive &&
+      object.object.kind != EnvironmentObject::Kind::kMesh) {
+    throw InvalidArgument("attach: '" + name + "' must be a primitive or a mesh");
+  }
+  const int link = robot_.linkIndex(object.link);
+  std::vector<bool> allowed(static_cast<std::size_t>(robot_.linkCount()), false);
+  allowed[static_cast<std::size_t>(link)] = true;
+  for (const std::string& touch : object.touch_links) {
+    allowed[static_cast<std::size_t>(robot_.linkIndex(touch))] = true;
+  }
+  EnvironmentGeometry::Item item = EnvironmentGeometry::loadItem(object.object, warnings);
+  Geom g = item.spec.kind == EnvironmentObject::Kind::kPrimitive
+               ? fcl_internal::shapeOf(item.spec.primitive)
+               : fcl_internal::meshOf(item.mesh);
+  const std::size_t element =
+      geometry_->robot.addElement(link, object.object.X_WO, std::move(g), allowed);
+  geometry_->attached.push_back({name, element, std::move(item), link});
+  id_ = nextModelId();
+}
+
+void FclCollisionModel::detachObject(const std::string& name,
+                                     const std::optional<Eigen::Isometry3d>& leave_at_W) {
+  auto& attached = geometry_->attached;
+  const auto it = std::find_if(attached.begin(), attached.end(),
+                               [&](const Geometry::Attached& a) { return a.name == name; });
+  if (it == attached.end()) throw InvalidArgument("detach: no attached object '" + name + "'");
+  std::optional<EnvironmentGeometry::Item> left;
+  if (leave_at_W) {
+    EnvironmentGeometry one;
+    one.add(it->item);
+    one.setPose(name, *leave_at_W);
+    left = one.remove(name);
+  }
+  const std::size_t element = it->element;
+  attached.erase(it);
+  geometry_->robot.removeElement(element);
+  for (Geometry::Attached& a : attached) {
+    if (a.element > element) --a.element;
+  }
+  id_ = nextModelId();
+  if (left) addObject(std::move(*left));
 }
 
 }  // namespace octomotion

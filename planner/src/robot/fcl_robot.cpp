@@ -91,6 +91,31 @@ RobotGeometry::RobotGeometry(const RobotModel& robot, bool keep_mesh_root_transf
   }
 }
 
+std::size_t RobotGeometry::addElement(int link, const Eigen::Isometry3d& X_LE, Geom geometry,
+                                      const std::vector<bool>& allowed_links) {
+  const std::size_t index = elements_.size();
+  for (std::size_t e = 0; e < index; ++e) {
+    if (!allowed_links[static_cast<std::size_t>(elements_[e].link)]) {
+      element_pairs_.emplace_back(static_cast<int>(e), static_cast<int>(index));
+    }
+  }
+  elements_.push_back({link, X_LE});
+  prototypes_.emplace_back(std::move(geometry));
+  return index;
+}
+
+void RobotGeometry::removeElement(std::size_t element) {
+  const int gone = static_cast<int>(element);
+  elements_.erase(elements_.begin() + gone);
+  prototypes_.erase(prototypes_.begin() + gone);
+  std::vector<std::pair<int, int>> pairs;
+  for (auto [a, b] : element_pairs_) {
+    if (a == gone || b == gone) continue;
+    pairs.emplace_back(a > gone ? a - 1 : a, b > gone ? b - 1 : b);
+  }
+  element_pairs_ = std::move(pairs);
+}
+
 void RobotGeometry::initScratch(const RobotModel& robot, RobotScratch& s) const {
   s.robot = robot.makeData();
   s.objects = prototypes_;

@@ -23,6 +23,12 @@ class ClearanceGrid {
   static constexpr int kStepsPerCell = 4;
   explicit ClearanceGrid(const Octree& tree, std::size_t max_cells = kDefaultMaxCells);
 
+  // After black voxels were added to the tree, all within `added` (voxel bounds of the tree's
+  // grid): lowers every cell's bound to its distance to the cells `added` covers, so the grid
+  // stays a lower bound for the changed tree without a new distance transform (looser than a
+  // rebuilt grid near `added`). Black voxels taken away need no change: bounds only grow then.
+  void addBlack(const VoxelBounds& added);
+
   int level() const { return level_; }
   double cellVoxels() const { return step_ * kStepsPerCell; }  // a cell's side
   double sideVoxels() const { return side_; }                  // of the tree's universe

@@ -30,7 +30,7 @@ class CollisionModelBuilder {
   CollisionModelBuilder(const RobotModel& robot, const EnvironmentGeometry& environment,
                         const CollisionModelOptions& options, CollisionModelReport& report);
   // Throws InvalidArgument for bad options, or a scene too large for the resolution.
-  std::unique_ptr<const CollisionModelParts> build();
+  std::unique_ptr<CollisionModelParts> build();
 
  private:
   // A self pair whose joint-space table is classified on the worker threads: each job owns its

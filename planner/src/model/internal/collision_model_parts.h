@@ -6,6 +6,7 @@
 #include "environment_model.h"
 #include "link_models.h"
 #include "self_collision.h"
+#include "world_state.h"
 
 namespace octomotion::detail {
 
@@ -14,6 +15,7 @@ struct CollisionModelParts {
   LinkModels links;              // the links' source trees and environment tests
   SelfCollision self;            // the checked pairs and how they are found
   ClearanceLevels clearance;     // ClearanceMethod::kPointOctree (empty otherwise)
+  WorldState world;              // what world updates need (world_updates.cpp)
 };
 
 }  // namespace octomotion::detail

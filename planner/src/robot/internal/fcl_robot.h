@@ -66,6 +66,13 @@ class RobotGeometry {
   // pairs whose AABBs are at least `cap` apart are skipped (distances >= cap may read as cap).
   double selfDistance(RobotScratch& scratch, double cap) const;
 
+  // World updates (FclCollisionModel::attachObject): an element carried by `link`, paired with
+  // the elements of every link not in `allowed_links` (per robot link); returns its index. And
+  // its removal (later elements move down by one).
+  std::size_t addElement(int link, const Eigen::Isometry3d& X_LE, Geom geometry,
+                         const std::vector<bool>& allowed_links);
+  void removeElement(std::size_t element);
+
   std::size_t elementCount() const { return elements_.size(); }
   int elementLink(std::size_t element) const { return elements_[element].link; }
 

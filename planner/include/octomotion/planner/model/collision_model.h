@@ -28,6 +28,7 @@
 #include "octomotion/octree/rounding.h"
 #include "octomotion/planner/model/state_explanation.h"
 #include "octomotion/planner/robot/robot_model.h"
+#include "octomotion/planner/scene/attached_object.h"
 #include "octomotion/planner/scene/environment_geometry.h"
 
 namespace octomotion::broadphase {
@@ -179,6 +180,12 @@ struct CollisionModelOptions {
   // state; when such a build-time test finds a contact, every state is in collision (and
   // CollisionModelReport::static_collisions says which). Off: every link and pair per state.
   bool fold_static = true;
+  // The universe covers everything the robot can reach, whatever the environment, and keeps the
+  // reach's corner as its origin (no origin search): for a world that changes between plans
+  // (OctreeCollisionModel::addObject and the others), where an object added or moved anywhere
+  // the robot reaches must fit. Default: the reach where it meets the environment's box, tighter
+  // and with the best of kOriginShifts origins, but an update that reaches outside it is refused.
+  bool fit_universe_to_reach = false;
   WarningSink warnings;
 };
 
@@ -352,12 +359,50 @@ class OctreeCollisionModel {
   };
   std::vector<LinkSourceTree> linkSourceTrees() const;
 
+  // ---- A world that changes between plans (docs/robots.md; world_updates.cpp). Each update
+  // re-voxelizes only the region it touches (the old and new boxes of the object, from every
+  // object that meets them) and keeps the link trees and self-pair data; the environment's grids,
+  // boxes and clearance structures follow. Not concurrent with queries: update between plans,
+  // then share the model read-only again. Each update gives the model a new id(), so scratch
+  // made before it is remade by the next query (and OMPL planners' data must be cleared: their
+  // checked motions are stale). Throws InvalidArgument for an unknown or duplicate name, an
+  // object whose reachable part lies outside the universe (see fit_universe_to_reach), or a
+  // model built with exact_primitives; the model is unchanged then.
+
+  // Adds an object to the world (its file read as EnvironmentGeometry::load does).
+  void addObject(const EnvironmentObject& object, const WarningSink& warnings = {});
+  void addObject(EnvironmentGeometry::Item item);
+  void removeObject(const std::string& name);
+  // The object's new pose (primitives and meshes).
+  void moveObject(const std::string& name, const Eigen::Isometry3d& X_WO);
+  // Attaches a primitive or mesh to a link: it moves with the link, is tested against the
+  // environment and against every other modelled link and attached object except the carrying
+  // link, its touch_links and the objects on the same link. Only its own trees are built.
+  void attachObject(const AttachedObject& object, const WarningSink& warnings = {});
+  // Detaches it; with `leave_at_W` it stays in the world there (as addObject; see
+  // attachedObjectPose for where the link holds it at a configuration).
+  void detachObject(const std::string& name,
+                    const std::optional<Eigen::Isometry3d>& leave_at_W = std::nullopt);
+  // X_WO of an attached object with the robot at q (X_WB: free-flying robots' base pose).
+  Eigen::Isometry3d attachedObjectPose(const std::string& name, const double* q, std::size_t q_size,
+                                       const Eigen::Isometry3d& X_WB) const;
+  // The world's objects now, and the attached objects' names.
+  const EnvironmentGeometry& objects() const;
+  std::vector<std::string> attachedObjects() const;
+
  private:
+  void requireUpdatable() const;
+  // The environment tree again inside the voxels the boxes touch, then everything derived.
+  void updateEnvironment(const std::vector<Eigen::AlignedBox3d>& changed_W);
+  void requireInUniverse(const EnvironmentGeometry::Item& item) const;
+
   std::uint64_t id_;
   RobotModel robot_;
   CollisionModelOptions options_;
   CollisionModelReport report_;
-  std::unique_ptr<const detail::CollisionModelParts> parts_;
+  void resetExplainData();
+
+  std::unique_ptr<detail::CollisionModelParts> parts_;
   std::unique_ptr<detail::ExplainData> explain_;  // built on first use (octree_explain.cpp)
 };
 

@@ -42,6 +42,9 @@ struct SceneOverrides {
   // loadPlanningScene refuses a start or goal in collision (requireFreeStartAndGoal); commands
   // that look at colliding states on purpose (check, view) turn it off.
   bool require_free_start_goal = true;
+  // CollisionModelOptions::fit_universe_to_reach: for scenes whose world changes between plans
+  // (PlanningScene::addObject and the others).
+  bool fit_universe_to_reach = false;
 };
 
 // The resolution used when a scene says `auto` (or a .cfg says nothing): fixed-base arms 1 cm;
@@ -87,7 +90,8 @@ Eigen::AlignedBox3d robotGeometryBox(const RobotModel& robot);
 
 struct PlanningScene {
   SceneSpec spec;  // with the overrides applied
-  std::shared_ptr<const OctreeCollisionModel> model;
+  // Not const: the world updates below change it in place (between plans).
+  std::shared_ptr<OctreeCollisionModel> model;
   // The references on the same robot and environment, built on first use (already built when
   // the scene's checker is one of them): exact FCL, and FCL on an OctoMap of the environment at
   // the scene's resolution.
@@ -100,6 +104,19 @@ struct PlanningScene {
   std::shared_ptr<const EnvironmentGeometry> environment;  // the loaded objects
   ompl::geometric::SimpleSetupPtr setup;  // checker installed, start/goal set if the scene has them
   CheckerKind checker = CheckerKind::kOctreeFused;  // the checker in use
+
+  // ---- A world that changes between plans (docs/robots.md; planning_scene_world.cpp): one
+  // call updates the octree model in place (OctreeCollisionModel::addObject and the others),
+  // `environment`, the references (rebuilt on next use, with the attached objects) and the
+  // checker, and clears the planner's data (setup->clear()). Not while a plan runs.
+  void addObject(const EnvironmentObject& object, const WarningSink& warnings = {});
+  void removeObject(const std::string& name);
+  void moveObject(const std::string& name, const Eigen::Isometry3d& X_WO);
+  void attachObject(const AttachedObject& object, const WarningSink& warnings = {});
+  // With `leave_at_q` (a configuration, RobotModel::variables() order) the object stays in the
+  // world where its link holds it there.
+  void detachObject(const std::string& name, const std::vector<double>* leave_at_q = nullptr);
+  std::vector<AttachedObject> attached;  // what is attached now, in order
 };
 
 // The octree model's query for an octree checker kind (kOctree: moveTree, kOctreeFused: the

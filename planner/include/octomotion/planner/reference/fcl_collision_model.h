@@ -15,10 +15,13 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "octomotion/planner/model/collision_backend.h"
 #include "octomotion/planner/robot/robot_model.h"
+#include "octomotion/planner/scene/attached_object.h"
 #include "octomotion/planner/scene/environment_geometry.h"
 
 namespace octomotion {
@@ -77,6 +80,18 @@ class FclCollisionModel final : public CollisionBackend {
   std::uint64_t id() const override { return id_; }  // see OctreeCollisionModel::id
   CheckerKind kind() const override { return CheckerKind::kFcl; }
   const Eigen::Isometry3d& baseMount() const { return mount_; }
+
+  // ---- World updates, as OctreeCollisionModel's (the same names, rules and errors, less the
+  // universe's: nothing is voxelized). Between queries only; each gives a new id(), so
+  // BackendScratch made before must be remade (the Scratch API's setConfiguration remakes its
+  // own). Primitives and meshes only.
+  void addObject(EnvironmentGeometry::Item item);
+  void removeObject(const std::string& name);
+  void moveObject(const std::string& name, const Eigen::Isometry3d& X_WO);
+  void attachObject(const AttachedObject& object, const WarningSink& warnings = {});
+  void detachObject(const std::string& name,
+                    const std::optional<Eigen::Isometry3d>& leave_at_W = std::nullopt);
+  const EnvironmentGeometry& objects() const;
 
  private:
   void explainContacts(const double* q, std::size_t q_size, const Eigen::Isometry3d& X_WB,

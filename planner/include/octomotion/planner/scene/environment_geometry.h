@@ -65,6 +65,20 @@ class EnvironmentGeometry {
   // The loaded objects, for reference checkers that use the exact geometry.
   const std::vector<Item>& items() const { return items_; }
 
+  // Changes between plans (environment_updates.cpp). One object loaded (its file read) as load()
+  // does.
+  static Item loadItem(const EnvironmentObject& object, const WarningSink& warnings = {});
+  // The object named `name`, or null.
+  const Item* find(const std::string& name) const;
+  // Appends an object; InvalidArgument when an object of that name exists.
+  void add(Item item);
+  // Removes the named object and returns it; InvalidArgument naming it when there is none.
+  Item remove(const std::string& name);
+  // Moves the named object to X_WO (its bounds follow); InvalidArgument for an unknown name, a
+  // pose that is not finite, an OctoMap (in world coordinates) or a point cloud (its points are
+  // stored posed: remove it and add it at the new pose).
+  void setPose(const std::string& name, const Eigen::Isometry3d& X_WO);
+
  private:
   std::vector<Item> items_;
 };

@@ -1,0 +1,21 @@
+// An object attached to a robot link (a grasped part, a tool), as MoveIt's AttachedCollisionObject
+// describes it: it moves with the link, is checked against the environment and against the
+// robot's other links, except the links it may touch (touch_links) and the link itself.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "octomotion/planner/scene/scene.h"
+
+namespace octomotion {
+
+struct AttachedObject {
+  // Its name and geometry (a primitive or a mesh); object.X_WO is read as X_LO, its pose in the
+  // link's frame.
+  EnvironmentObject object;
+  std::string link;                      // the robot link that carries it
+  std::vector<std::string> touch_links;  // links allowed to touch it (besides `link`)
+};
+
+}  // namespace octomotion
