@@ -368,7 +368,7 @@ void checkAgainstFcl(const RobotModel& robot, const Eigen::Isometry3d& X_WB) {
   for (EnvironmentObject& o : scene) o.X_WO = X_WB * o.X_WO;
   const EnvironmentGeometry objects = EnvironmentGeometry::load(scene);
   OctreeCollisionModel octree(robot, objects, options);
-  FclCollisionModel fcl(robot, objects);
+  FclCollisionModel fcl(robot, objects, false, false, X_WB);  // mounted like the octree
   auto both = [&](auto&& update) {
     update(octree);
     update(fcl);
