@@ -17,23 +17,12 @@
 
 #include "octomotion/planner/ompl/planning_scene.h"
 #include "octomotion/planner/ompl/state_space.h"
+#include "slowdown.h"
 
 namespace octomotion {
 namespace {
 
-// Sanitizer builds check every state 3-5x slower; the planner's sample sequence is fixed by the
-// seed, so the same search just needs proportionally more wall time.
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
-constexpr double kSlowdown = 5.0;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer)
-constexpr double kSlowdown = 5.0;
-#else
-constexpr double kSlowdown = 1.0;
-#endif
-#else
-constexpr double kSlowdown = 1.0;
-#endif
+using test::kSlowdown;
 
 std::string scenesDir() {
   return std::string(OCTOMOTION_SOURCE_DIR) + "/robots/scenes";

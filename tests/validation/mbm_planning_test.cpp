@@ -39,7 +39,7 @@ TEST(MbmPlanning, OneProblemOfEachSetPlansInSevenDimensionsAndFclFindsThePathFre
     std::ofstream(scene_path) << "robot: {urdf: " << panda << "/panda.urdf, srdf: " << panda
                               << "/panda.srdf}\nenvironment:\n  - moveit_scene: " << p.scene
                               << "\nproblem: {moveit_request: " << p.request
-                              << ", time: 20, seed: 1}\n";
+                              << ", time: 60, seed: 1}\n";  // a cap: RRTConnect stops when solved
     PlanningScene scene = loadPlanningScene(scene_path, {}, [](const std::string&) {});
     const RobotModel& robot = scene.model->robot();
     ASSERT_EQ(robot.variableCount(), 7);
