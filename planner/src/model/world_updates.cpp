@@ -357,16 +357,8 @@ void OctreeCollisionModel::attachObject(const AttachedObject& object, const Warn
       throw InvalidArgument("attach: an object named '" + name + "' is attached already");
     }
   }
-  if (object.object.kind != EnvironmentObject::Kind::kPrimitive &&
-      object.object.kind != EnvironmentObject::Kind::kMesh) {
-    throw InvalidArgument("attach: '" + name + "' must be a primitive or a mesh");
-  }
-  const int link = robot_.linkIndex(object.link);
-  std::vector<bool> allowed(static_cast<std::size_t>(robot_.linkCount()), false);
-  allowed[static_cast<std::size_t>(link)] = true;
-  for (const std::string& touch : object.touch_links) {
-    allowed[static_cast<std::size_t>(robot_.linkIndex(touch))] = true;
-  }
+  std::vector<bool> allowed;
+  const int link = attachmentLinks(robot_, object, allowed);
   detail::AttachedEntry entry{object, EnvironmentGeometry::loadItem(object.object, warnings), link,
                               0, Eigen::AlignedBox3d()};
   // Its geometry as a link's: one element at X_LO.

@@ -309,16 +309,8 @@ void FclCollisionModel::attachObject(const AttachedObject& object, const Warning
       throw InvalidArgument("attach: an object named '" + name + "' is attached already");
     }
   }
-  if (object.object.kind != EnvironmentObject::Kind::kPrimitive &&
-      object.object.kind != EnvironmentObject::Kind::kMesh) {
-    throw InvalidArgument("attach: '" + name + "' must be a primitive or a mesh");
-  }
-  const int link = robot_.linkIndex(object.link);
-  std::vector<bool> allowed(static_cast<std::size_t>(robot_.linkCount()), false);
-  allowed[static_cast<std::size_t>(link)] = true;
-  for (const std::string& touch : object.touch_links) {
-    allowed[static_cast<std::size_t>(robot_.linkIndex(touch))] = true;
-  }
+  std::vector<bool> allowed;
+  const int link = attachmentLinks(robot_, object, allowed);
   EnvironmentGeometry::Item item = EnvironmentGeometry::loadItem(object.object, warnings);
   Geom g = item.spec.kind == EnvironmentObject::Kind::kPrimitive
                ? fcl_internal::shapeOf(item.spec.primitive)

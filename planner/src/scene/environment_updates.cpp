@@ -2,6 +2,7 @@
 #include <algorithm>
 
 #include "octomotion/octree/shapes.h"
+#include "octomotion/planner/scene/attached_object.h"
 #include "octomotion/planner/scene/environment_geometry.h"
 
 namespace octomotion {
@@ -78,6 +79,21 @@ void EnvironmentGeometry::setPose(const std::string& name, const Eigen::Isometry
                             "it at the new pose");
   }
   it->spec.X_WO = X_WO;
+}
+
+int attachmentLinks(const RobotModel& robot, const AttachedObject& object,
+                    std::vector<bool>& allowed) {
+  if (object.object.kind != EnvironmentObject::Kind::kPrimitive &&
+      object.object.kind != EnvironmentObject::Kind::kMesh) {
+    throw InvalidArgument("attach: '" + object.object.name + "' must be a primitive or a mesh");
+  }
+  const int link = robot.linkIndex(object.link);
+  allowed.assign(static_cast<std::size_t>(robot.linkCount()), false);
+  allowed[static_cast<std::size_t>(link)] = true;
+  for (const std::string& touch : object.touch_links) {
+    allowed[static_cast<std::size_t>(robot.linkIndex(touch))] = true;
+  }
+  return link;
 }
 
 }  // namespace octomotion

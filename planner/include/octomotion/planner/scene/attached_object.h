@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "octomotion/planner/robot/robot_model.h"
 #include "octomotion/planner/scene/scene.h"
 
 namespace octomotion {
@@ -17,5 +18,11 @@ struct AttachedObject {
   std::string link;                      // the robot link that carries it
   std::vector<std::string> touch_links;  // links allowed to touch it (besides `link`)
 };
+
+// The checks every checker makes before attaching: the object is a primitive or a mesh, its link
+// and touch links exist (InvalidArgument naming them). Returns the carrying link's index and sets
+// `allowed` (one flag per link) on the links the object may touch: that link and touch_links.
+int attachmentLinks(const RobotModel& robot, const AttachedObject& object,
+                    std::vector<bool>& allowed);
 
 }  // namespace octomotion
