@@ -19,3 +19,16 @@ def random_states(scene, count, seed, margin=0.1):
     low, high = scene.bounds
     span = high - low
     return rng.uniform(low - margin * span, high + margin * span, size=(count, scene.dof))
+
+# A free-flying drone in three rooms (robots/scenes/rooms.yaml): states are x y z qx qy qz qw.
+RIGID_SCENE = os.path.join(SOURCE_DIR, "robots", "scenes", "rooms.yaml")
+
+
+def random_poses(scene, count, seed):
+    """Positions uniform in the bounds, unit quaternions uniform over rotations."""
+    rng = numpy.random.default_rng(seed)
+    low, high = scene.bounds
+    xyz = rng.uniform(low[:3], high[:3], size=(count, 3))
+    quat = rng.normal(size=(count, 4))
+    quat /= numpy.linalg.norm(quat, axis=1, keepdims=True)
+    return numpy.ascontiguousarray(numpy.hstack([xyz, quat]))

@@ -11,7 +11,7 @@ import unittest
 import numpy
 
 import octomotion
-from support import ARM_SCENE, CLI, RESOLUTION, random_states
+from support import ARM_SCENE, CLI, RESOLUTION, RIGID_SCENE, random_poses, random_states
 
 
 class CheckTest(unittest.TestCase):
@@ -46,18 +46,7 @@ class CheckTest(unittest.TestCase):
 
     @unittest.skipUnless(os.path.exists(CLI), "the octomotion command is not built")
     def test_check_many_equals_the_command(self):
-        with tempfile.TemporaryDirectory() as tmp:
-            states = os.path.join(tmp, "states.csv")
-            with open(states, "w") as f:
-                f.write(",".join(self.scene.joint_names) + "\n")
-                for q in self.Q:
-                    f.write(",".join(repr(float(v)) for v in q) + "\n")
-            out = subprocess.run(
-                [CLI, "check", ARM_SCENE, "--states", states, "--resolution", str(RESOLUTION)],
-                check=True, capture_output=True, text=True,
-            ).stdout
-        rows = list(csv.DictReader(io.StringIO(out)))
-        command = [row["valid"] == "1" for row in rows]
+        command = command_answers(self.scene, ARM_SCENE, self.Q, "--resolution", str(RESOLUTION))
         self.assertEqual(len(command), len(self.Q))
         self.assertEqual(list(self.scene.check_many(self.Q)), command)
 
@@ -130,6 +119,47 @@ class CheckTest(unittest.TestCase):
         self.assertAlmostEqual(angle, 1.0, places=9)
         with self.assertRaises(octomotion.InvalidArgument):
             self.scene.forward_kinematics(numpy.full(self.scene.dof, numpy.nan))
+
+
+def command_answers(scene, scene_path, Q, *flags):
+    """`octomotion check`'s valid column for the states Q."""
+    with tempfile.TemporaryDirectory() as tmp:
+        states = os.path.join(tmp, "states.csv")
+        with open(states, "w") as f:
+            f.write(",".join(scene.joint_names) + "\n")
+            for q in Q:
+                f.write(",".join(repr(float(v)) for v in q) + "\n")
+        out = subprocess.run([CLI, "check", scene_path, "--states", states, *flags],
+                             check=True, capture_output=True, text=True).stdout
+    return [row["valid"] == "1" for row in csv.DictReader(io.StringIO(out))]
+
+
+class RigidBodyTest(unittest.TestCase):
+    """A free-flying body: seven columns, the pose's quaternion normalised, a zero one invalid."""
+
+    @classmethod
+    def setUpClass(cls):
+        cls.scene = octomotion.load_scene(RIGID_SCENE)
+        cls.Q = random_poses(cls.scene, 300, seed=5)
+        cls.Q[3, 3:] = 0.0  # a zero quaternion
+
+    def test_columns(self):
+        self.assertTrue(self.scene.free_flying)
+        self.assertEqual(self.scene.joint_names, ["x", "y", "z", "qx", "qy", "qz", "qw"])
+
+    def test_answers(self):
+        valid = self.scene.check_many(self.Q, threads=2)
+        self.assertEqual(list(valid), [self.scene.check(q) for q in self.Q])
+        self.assertTrue(valid.any() and not valid.all())
+        self.assertFalse(valid[3])
+        self.assertEqual(self.scene.explain(self.Q[3])[0].kind, "non-finite")
+        if os.path.exists(CLI):
+            self.assertEqual(list(valid), command_answers(self.scene, RIGID_SCENE, self.Q))
+
+    def test_pose(self):
+        q = self.Q[0]
+        X = next(iter(self.scene.forward_kinematics(q).values()))
+        numpy.testing.assert_allclose(X[:3, 3], q[:3], atol=1e-12)
 
 
 class LoadErrorsTest(unittest.TestCase):
