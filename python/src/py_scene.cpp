@@ -5,6 +5,8 @@
 #include <atomic>
 #include <cmath>
 #include <filesystem>
+#include <mutex>
+#include <shared_mutex>
 #include <sstream>
 #include <thread>
 
@@ -182,7 +184,7 @@ void Scene::setState(const double* q, ob::State* state) const {
   std::copy(q, q + dof_, values);
 }
 
-bool Scene::check(const double* q) const {
+bool Scene::checkUnlocked(const double* q) const {
   ob::ScopedState<> state(si_);
   setState(q, state.get());
   return si_->getStateValidityChecker()->isValid(state.get());
@@ -190,6 +192,7 @@ bool Scene::check(const double* q) const {
 
 void Scene::checkMany(const double* Q, std::size_t rows, std::uint8_t* valid,
                       unsigned threads) const {
+  const std::shared_lock<std::shared_mutex> lock(mutex_);
   const ob::StateValidityCheckerPtr checker = si_->getStateValidityChecker();
   const std::size_t dof = static_cast<std::size_t>(dof_);
   auto run = [&](std::size_t begin, std::size_t end, ob::State* state) {
@@ -221,6 +224,7 @@ void Scene::checkMany(const double* Q, std::size_t rows, std::uint8_t* valid,
 }
 
 double Scene::clearance(const double* q) const {
+  const std::shared_lock<std::shared_mutex> lock(mutex_);
   ob::ScopedState<> state(si_);
   setState(q, state.get());
   return si_->getStateValidityChecker()->clearance(state.get());
@@ -238,7 +242,17 @@ std::vector<double> Scene::configuration(const double* q, Eigen::Isometry3d& X_W
   return config;
 }
 
+bool Scene::check(const double* q) const {
+  const std::shared_lock<std::shared_mutex> lock(mutex_);
+  return checkUnlocked(q);
+}
+
 std::vector<Reason> Scene::explain(const double* q) const {
+  const std::shared_lock<std::shared_mutex> lock(mutex_);
+  return explainUnlocked(q);
+}
+
+std::vector<Reason> Scene::explainUnlocked(const double* q) const {
   std::vector<Reason> reasons;
   Eigen::Isometry3d X_WB;
   bool finite = true;
@@ -285,6 +299,7 @@ std::vector<Reason> Scene::explain(const double* q) const {
 
 std::vector<std::pair<std::string, Eigen::Matrix4d>> Scene::forwardKinematics(
     const double* q) const {
+  const std::shared_lock<std::shared_mutex> lock(mutex_);
   const RobotModel& robot = scene_->model->robot();
   Eigen::Isometry3d X_WB;
   bool finite = true;
@@ -303,6 +318,7 @@ std::vector<double> Scene::plan(const std::string& planner, std::optional<double
                                 std::optional<std::uint64_t> seed, const std::vector<double>* start,
                                 const std::vector<double>* goal, double interpolation,
                                 std::size_t& states) {
+  const std::unique_lock<std::shared_mutex> lock(mutex_);
   ompl::geometric::SimpleSetup& ss = *scene_->setup;
   const ob::ProblemDefinitionPtr pdef = ss.getProblemDefinition();
   if (time) {
@@ -328,9 +344,9 @@ std::vector<double> Scene::plan(const std::string& planner, std::optional<double
       throw InvalidArgument(std::string("plan: ") + what + " has " + std::to_string(q.size()) +
                             " values, expected " + std::to_string(dof_));
     }
-    if (!check(q.data())) {
+    if (!checkUnlocked(q.data())) {
       std::string why;
-      for (const Reason& r : explain(q.data())) why += (why.empty() ? "" : "; ") + r.text;
+      for (const Reason& r : explainUnlocked(q.data())) why += (why.empty() ? "" : "; ") + r.text;
       throw InvalidArgument(std::string("plan: ") + what + " is invalid" +
                             (why.empty() ? "" : ": " + why));
     }
@@ -368,19 +384,23 @@ std::vector<double> Scene::plan(const std::string& planner, std::optional<double
 
 void Scene::addObject(const std::string& name, const ShapeArgs& shape,
                       const Eigen::Matrix4d& X_WO) {
+  const std::unique_lock<std::shared_mutex> lock(mutex_);
   scene_->addObject(makeObject(name, shape, toIsometry(X_WO, "add_object"), "add_object"));
 }
 
 void Scene::removeObject(const std::string& name) {
+  const std::unique_lock<std::shared_mutex> lock(mutex_);
   scene_->removeObject(name);
 }
 
 void Scene::moveObject(const std::string& name, const Eigen::Matrix4d& X_WO) {
+  const std::unique_lock<std::shared_mutex> lock(mutex_);
   scene_->moveObject(name, toIsometry(X_WO, "move_object"));
 }
 
 void Scene::attachObject(const std::string& name, const std::string& link, const ShapeArgs& shape,
                          const Eigen::Matrix4d& X_LO, const std::vector<std::string>& touch_links) {
+  const std::unique_lock<std::shared_mutex> lock(mutex_);
   AttachedObject attached;
   attached.object = makeObject(name, shape, toIsometry(X_LO, "attach_object"), "attach_object");
   attached.link = link;
@@ -389,6 +409,7 @@ void Scene::attachObject(const std::string& name, const std::string& link, const
 }
 
 void Scene::detachObject(const std::string& name, const std::vector<double>* leave_at) {
+  const std::unique_lock<std::shared_mutex> lock(mutex_);
   if (!leave_at) {
     scene_->detachObject(name);
     return;
@@ -402,6 +423,7 @@ void Scene::detachObject(const std::string& name, const std::vector<double>* lea
 }
 
 std::vector<std::string> Scene::objectNames() const {
+  const std::shared_lock<std::shared_mutex> lock(mutex_);
   std::vector<std::string> names;
   if (scene_->environment) {
     for (const EnvironmentGeometry::Item& item : scene_->environment->items()) {
@@ -412,6 +434,7 @@ std::vector<std::string> Scene::objectNames() const {
 }
 
 std::vector<std::string> Scene::attachedNames() const {
+  const std::shared_lock<std::shared_mutex> lock(mutex_);
   std::vector<std::string> names;
   for (const AttachedObject& a : scene_->attached) names.push_back(a.object.name);
   return names;

@@ -4,6 +4,7 @@
 
 #include <memory>
 #include <optional>
+#include <shared_mutex>
 #include <string>
 #include <utility>
 #include <vector>
@@ -34,6 +35,8 @@ struct ShapeArgs {
   std::optional<std::vector<double>> scale;
 };
 
+// Queries share the scene; plan and the world updates take it alone (a shared_mutex), so calls
+// from several Python threads wait for each other instead of racing.
 class Scene {
  public:
   // `flags`: command-line scene options (tools::sceneOptions()) as (flag, value) pairs.
@@ -77,9 +80,12 @@ class Scene {
   std::vector<std::string> attachedNames() const;
 
  private:
+  bool checkUnlocked(const double* q) const;
+  std::vector<Reason> explainUnlocked(const double* q) const;
   void setState(const double* q, ompl::base::State* state) const;
   std::vector<double> configuration(const double* q, Eigen::Isometry3d& X_WB, bool& finite) const;
 
+  mutable std::shared_mutex mutex_;
   std::shared_ptr<PlanningScene> scene_;
   ompl::base::SpaceInformationPtr si_;
   // The scene's own start (empty when none) and goal, restored when plan() is not given them.

@@ -1,5 +1,6 @@
 """octomotion.plan and the scene updates (add, move, remove, attach, detach objects)."""
 
+import threading
 import unittest
 
 import numpy
@@ -73,6 +74,29 @@ class UpdateTest(unittest.TestCase):
         self.assertFalse(self.scene.check(self.q))
         self.scene.detach_object("ball")
         self.assertEqual(self.scene.attached_names, [])
+        self.assertTrue(self.scene.check(self.q))
+
+    def test_updates_while_another_thread_checks(self):
+        # The updates wait for a batch in flight: every batch sees the crate or does not, and
+        # the answer for q is either the one with it or the one without.
+        Q = numpy.repeat(self.q[None, :], 2000, axis=0)
+        answers, errors = [], []
+
+        def check():
+            try:
+                for _ in range(20):
+                    answers.append(set(self.scene.check_many(Q, threads=2).tolist()))
+            except Exception as e:  # noqa: BLE001 -- reported by the assertion below
+                errors.append(e)
+
+        worker = threading.Thread(target=check)
+        worker.start()
+        for _ in range(10):
+            self.scene.add_object("crate", box=[0.2, 0.2, 0.2], pose=self.hand)
+            self.scene.remove_object("crate")
+        worker.join()
+        self.assertEqual(errors, [])
+        self.assertTrue(all(a in ({True}, {False}) for a in answers), answers)
         self.assertTrue(self.scene.check(self.q))
 
     def test_bad_updates(self):
