@@ -18,7 +18,8 @@ build=${OCTOMOTION_BUILD_DIR:-$root/build}
 packages=(build-essential cmake ninja-build pkg-config clang-format
   libeigen3-dev libompl-dev libfcl-dev liburdfdom-dev libtinyxml-dev libassimp-dev liboctomap-dev
   libboost-serialization-dev libboost-filesystem-dev libboost-system-dev
-  libyaml-cpp-dev libnanoflann-dev libgtest-dev libgmock-dev libbenchmark-dev gnuplot-nox python3)
+  libyaml-cpp-dev libnanoflann-dev libgtest-dev libgmock-dev libbenchmark-dev gnuplot-nox python3
+  pybind11-dev python3-pybind11 python3-numpy python3-matplotlib)
 # The test suite also drives the web viewer (viewer/) in headless Chromium through Node.js.
 if [[ $mode == test ]]; then
   packages+=(chromium)
@@ -42,9 +43,13 @@ if [[ $mode == test && ! -d $root/viewer/node_modules ]]; then
   npm ci --prefix "$root/viewer" --no-audit --no-fund
 fi
 
+# The Python module is built for Debian's interpreter (python3-numpy's), not another python3
+# earlier on the PATH.
+python_args=()
+[[ -x /usr/bin/python3 ]] && python_args=(-DPython3_EXECUTABLE=/usr/bin/python3)
 # shellcheck disable=SC2086
 cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DOCTOMOTION_WERROR=ON \
-  ${OCTOMOTION_CMAKE_ARGS:-}
+  "${python_args[@]}" ${OCTOMOTION_CMAKE_ARGS:-}
 cmake --build "$build" -j "$(nproc)"
 
 if [[ $mode == demo ]]; then

@@ -6,7 +6,7 @@
 #   scripts/write_benchmarks.sh [--build DIR] [SECTION ...]     (no SECTION: all of them)
 # Sections: differential motion octree builders translate primitive_contact planner_environment
 #           planner_selfcollision planner_clearance pointoctree self_pair_tables check_breakdown
-#           plan_split validity_checker broadphase tradeoff
+#           plan_split validity_checker broadphase tradeoff python_check_many
 # Environment: OCTOMOTION_DIFFERENTIAL_STATES (default 1000000).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -18,7 +18,7 @@ fi
 out=$root/docs/benchmarks.md
 all=(differential motion octree builders translate primitive_contact planner_environment
   planner_selfcollision planner_clearance pointoctree self_pair_tables check_breakdown plan_split
-  validity_checker broadphase world_updates tradeoff)
+  validity_checker broadphase world_updates tradeoff python_check_many)
 selected=("$@")
 ((${#selected[@]})) || selected=("${all[@]}")
 
@@ -55,6 +55,11 @@ add world_updates "A world that changes between plans, the Panda at 1 cm (planne
 add tradeoff "Speed/accuracy trade study (tradeoff_bench; docs/trade-off.md)" tradeoff_bench \
   "--out-dir $build/tradeoff-results"
 
+# A Python bench: its target is the extension, its program a script run by the module's interpreter.
+add python_check_many "Python check_many against the C++ per-state time (python_check_many_bench.py)" \
+  _octomotion "--states 1000,10000 --cli $build/planner/octomotion"
+python=$(sed -n 's/^Python3_EXECUTABLE:[A-Z]*=//p' "$build/CMakeCache.txt" 2>/dev/null || true)
+
 commit=$(git -C "$root" rev-parse --short HEAD)
 git -C "$root" diff --quiet HEAD -- octree planner bench tests || commit="$commit+changes"
 cpu=$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ *//' || echo unknown)
@@ -73,8 +78,14 @@ for s in "${selected[@]}"; do
   [[ -n ${title[$s]:-} ]] || { echo "unknown section $s (one of: ${all[*]})" >&2; exit 2; }
   cmake --build "$build" --target "${target[$s]}" >/dev/null
   echo "write_benchmarks: $s" >&2
+  program=("$build/bench/${target[$s]}")
+  shown="build/bench/${target[$s]}"
+  if [[ ${target[$s]} == _octomotion ]]; then
+    program=(env "PYTHONPATH=$build/python" "${python:-python3}" "bench/$s""_bench.py")
+    shown="PYTHONPATH=build/python ${python:-python3} bench/$s""_bench.py"
+  fi
   # shellcheck disable=SC2086
-  if ! result=$(cd "$root" && "$build/bench/${target[$s]}" ${args[$s]} 2>&1); then
+  if ! result=$(cd "$root" && "${program[@]}" ${args[$s]} 2>&1); then
     echo "$result" >&2
     echo "write_benchmarks: $s failed; docs/benchmarks.md not written" >&2
     exit 1
@@ -83,7 +94,7 @@ for s in "${selected[@]}"; do
     echo "<!-- section $s -->"
     echo "## ${title[$s]}"
     echo
-    echo "$stamp Command: \`build/bench/${target[$s]} ${args[$s]//$build/build}\`"
+    echo "$stamp Command: \`$shown ${args[$s]//$build/build}\`"
     echo
     if [[ $s == differential ]]; then
       echo "Per checker path: FCL's contacts; the octree's missed contacts (none allowed with"
