@@ -6,7 +6,7 @@
 #   scripts/write_benchmarks.sh [--build DIR] [SECTION ...]     (no SECTION: all of them)
 # Sections: differential motion octree builders translate primitive_contact planner_environment
 #           planner_selfcollision planner_clearance pointoctree self_pair_tables check_breakdown
-#           plan_split validity_checker broadphase tradeoff
+#           plan_split validity_checker broadphase tradeoff bench_set_mbm
 # Environment: OCTOMOTION_DIFFERENTIAL_STATES (default 1000000).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -18,7 +18,7 @@ fi
 out=$root/docs/benchmarks.md
 all=(differential motion octree builders translate primitive_contact planner_environment
   planner_selfcollision planner_clearance pointoctree self_pair_tables check_breakdown plan_split
-  validity_checker broadphase world_updates tradeoff)
+  validity_checker broadphase world_updates tradeoff bench_set_mbm)
 selected=("$@")
 ((${#selected[@]})) || selected=("${all[@]}")
 
@@ -54,6 +54,8 @@ add world_updates "A world that changes between plans, the Panda at 1 cm (planne
   planner_world_updates_bench "$gbench"
 add tradeoff "Speed/accuracy trade study (tradeoff_bench; docs/trade-off.md)" tradeoff_bench \
   "--out-dir $build/tradeoff-results"
+add bench_set_mbm "Planning on the MotionBenchMaker Panda problems (octomotion bench-set)" \
+  octomotion ""
 
 commit=$(git -C "$root" rev-parse --short HEAD)
 git -C "$root" diff --quiet HEAD -- octree planner bench tests || commit="$commit+changes"
@@ -71,6 +73,14 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 for s in "${selected[@]}"; do
   [[ -n ${title[$s]:-} ]] || { echo "unknown section $s (one of: ${all[*]})" >&2; exit 2; }
+  if [[ $s == bench_set_mbm ]]; then  # a command over a data set, not a bench program
+    echo "write_benchmarks: $s" >&2
+    "$root/scripts/bench_set_mbm.sh" "$build" "$tmp/$s.body"
+    printf '<!-- section %s -->\n## %s\n\n%s\n\n' "$s" "${title[$s]}" "$stamp" >"$tmp/$s.md"
+    cat "$tmp/$s.body" >>"$tmp/$s.md"
+    echo "<!-- end $s -->" >>"$tmp/$s.md"
+    continue
+  fi
   cmake --build "$build" --target "${target[$s]}" >/dev/null
   echo "write_benchmarks: $s" >&2
   # shellcheck disable=SC2086
