@@ -21,7 +21,7 @@ tar -xjf "$archive" -C "$tmp"
 limit=()
 [[ -n ${OCTOMOTION_BENCH_SET_LIMIT:-} ]] && limit=(--limit "$OCTOMOTION_BENCH_SET_LIMIT")
 results=$build/bench-set-mbm
-args=(--checkers octree-fused,fcl --planner RRTConnect --time 1 --seed 1 "${limit[@]}"
+args=(--checkers "octree-fused,fcl" --planner RRTConnect --time 1 --seed 1 "${limit[@]}"
   --robot "$data/panda/panda.urdf" --srdf "$data/panda/panda.srdf")
 cmake --build "$build" --target octomotion >/dev/null
 "$build/planner/octomotion" bench-set "$tmp/problems" "${args[@]}" --out-dir "$results" \

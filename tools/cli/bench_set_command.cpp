@@ -118,8 +118,9 @@ int benchSetCommand(const std::vector<std::string>& args) {
     options.checkers = {*options.overrides.checker};
   }
   if (options.checkers.empty()) throw InvalidArgument("--checkers: no checker given");
-  // Only errors: a thousand loads would repeat the same warnings.
-  ompl::msg::setLogLevel(ompl::msg::LOG_ERROR);
+  // OMPL's messages repeat per problem (every load sets the seed again, which OMPL reports as an
+  // error once sampling has started; a failed plan logs why): the CSV says what happened.
+  ompl::msg::setLogLevel(ompl::msg::LOG_NONE);
   std::filesystem::create_directories(out_dir);
   options.scene_dir = out_dir + "/scenes";
   options.progress = showProgress;
@@ -131,6 +132,15 @@ int benchSetCommand(const std::vector<std::string>& args) {
   writeFile(out_dir + "/summary.md",
             [&](std::ostream& o) { tools::writeSummaryMarkdown(summary, o); });
   tools::writeSummaryMarkdown(summary, std::cout);
+  std::size_t not_loaded = 0;
+  for (const tools::ProblemRun& r : result.runs) {
+    if (r.error.empty()) continue;
+    if (not_loaded++ == 0) std::cerr << "octomotion: warning: " << r.error << "\n";
+  }
+  if (not_loaded > 1) {
+    std::cerr << "octomotion: warning: " << not_loaded
+              << " plans failed (the error column of results.csv says why)\n";
+  }
   std::size_t colliding = 0;
   for (const auto& s : summary) colliding += s.set == "all" ? 0 : s.recheck_colliding;
   std::cerr << "octomotion: " << result.runs.size() << " plans in " << result.seconds
