@@ -45,7 +45,9 @@ bool folderProblems(const fs::path& folder, std::vector<SetProblem>& out) {
     if (isYaml(entry.path()) && startsWith(name, "request")) pairs = true;
   }
   std::sort(files.begin(), files.end());
-  const std::string set = fs::absolute(folder).lexically_normal().filename().string();
+  fs::path normal = fs::absolute(folder).lexically_normal();
+  if (normal.filename().empty()) normal = normal.parent_path();  // "DIR/"
+  const std::string set = normal.filename().string();
   const std::size_t before = out.size();
   for (const fs::path& f : files) {
     const std::string name = f.filename().string();
