@@ -29,6 +29,8 @@ PlanningScene loadSceneVerbose(const std::string& path, const SceneOverrides& ov
 
 // `octomotion bench SCENE ...`: the speed/accuracy trade study of one scene.
 int benchCommand(const std::vector<std::string>& args);
+// `octomotion bench-set DIR ...`: the planning benchmark over a folder of problems.
+int benchSetCommand(const std::vector<std::string>& args);
 // `octomotion view SCENE ...`: writes the glTF file and the viewer page.
 int viewCommand(const std::vector<std::string>& args);
 

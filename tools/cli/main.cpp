@@ -31,6 +31,7 @@ const char* kUsage = R"(usage:
   octomotion check SCENE --states STATES.csv [--explain] [options]
   octomotion info SCENE [options]
   octomotion bench SCENE [bench options] [options]   (octomotion bench --help)
+  octomotion bench-set DIR [bench-set options] [options]   (octomotion bench-set --help)
   octomotion view SCENE [--path PATH] [view options] [options]   (octomotion view --help)
 SCENE is a YAML scene (docs/scenes.md) or an OMPL.app .cfg problem.
 options:
@@ -38,7 +39,8 @@ options:
 
 // After the scene options (tools::sceneOptions()).
 const char* kUsageTail =
-    R"(  --interpolation METRES   plan: spacing of the written path's states (default: OMPL's)
+    R"(  --interpolation METRES   plan: write states at this spacing (default: the simplified
+                           path's waypoints, as OMPL.app writes them)
   --explain                check: a reason column (why each invalid state is invalid)
   --verbose                OMPL's log messages on stderr
 )";
@@ -114,14 +116,16 @@ int plan(const Args& a) {
     std::cerr << "octomotion: no solution found in " << r.seconds << " s\n";
     return 2;
   }
-  std::cerr << "octomotion: solved in " << r.seconds << " s; path of " << r.path->getStateCount()
-            << " states, length " << r.path->length() << "\n";
+  // The simplified waypoints unless --interpolation asks for states at a spacing.
+  const ompl::geometric::PathGeometric& path = a.interpolation > 0 ? *r.path : *r.waypoints;
+  std::cerr << "octomotion: solved in " << r.seconds << " s; path of " << path.getStateCount()
+            << " states, length " << path.length() << "\n";
   if (a.out.empty()) {
-    writePath(scene, *r.path, std::cout);
+    writePath(scene, path, std::cout);
   } else {
     std::ofstream out(a.out);
     if (!out) throw FileError(a.out, "cannot write the path");
-    writePath(scene, *r.path, out);
+    writePath(scene, path, out);
     out.close();  // a full disk shows when the buffer is flushed
     if (!out) throw FileError(a.out, "write error (disk full?): the path was not written");
     std::cerr << "octomotion: path written to " << a.out << "\n";
@@ -291,6 +295,9 @@ int info(const Args& a) {
 int main(int argc, char** argv) {
   try {
     // Commands with options of their own parse their arguments themselves.
+    if (argc >= 2 && std::string(argv[1]) == "bench-set") {
+      return cli::finishStdout(cli::benchSetCommand({argv + 2, argv + argc}));
+    }
     if (argc >= 2 && (std::string(argv[1]) == "bench" || std::string(argv[1]) == "view")) {
       ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
       const std::vector<std::string> rest(argv + 2, argv + argc);

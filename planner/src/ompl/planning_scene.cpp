@@ -471,6 +471,7 @@ PlanResult planWithOmpl(PlanningScene& scene, double interpolation) {
   if (!result.solved) return result;
   ss.simplifySolution();
   result.path = std::make_shared<og::PathGeometric>(ss.getSolutionPath());
+  result.waypoints = std::make_shared<og::PathGeometric>(*result.path);
   if (interpolation > 0) {
     const double length = result.path->length();
     const double states = std::ceil(length / interpolation) + 1;

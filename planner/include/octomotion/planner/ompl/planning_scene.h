@@ -174,6 +174,8 @@ struct PlanResult {
   double seconds = 0;   // planning time
   std::size_t checks = 0;
   std::shared_ptr<ompl::geometric::PathGeometric> path;  // simplified and interpolated
+  // The simplified path's own states, before interpolation (what OMPL.app writes).
+  std::shared_ptr<ompl::geometric::PathGeometric> waypoints;
 };
 
 // Solves the scene's problem (its planner, time limit and seed), simplifies the path and
