@@ -51,6 +51,10 @@ const OptionTable<StudyCommandOptions>& studyOptions() {
              o.study.roundings.push_back(roundingFromString(r.c_str()));
            }
          }},
+        {"--refine-exact", nullptr,
+         "also conservative rounding refined with FCL (--refine exact; rows\n"
+         "\"conservative+exact\")",
+         [](const std::string&, const std::string&, O& o) { o.study.refine_exact = true; }},
         {"--paths", "LIST", "octree,octree-fused (default both)",
          [](const std::string& flag, const std::string& v, O& o) {
            o.study.octree_checkers.clear();
