@@ -176,6 +176,32 @@ TEST(RefineExact, CentreRoundingIsRefused) {
   EXPECT_EQ(parseRefineMode(refineModeName(RefineMode::kExact)), RefineMode::kExact);
 }
 
+TEST(RefineExact, SceneKeyIsReadAndCheckedByName) {
+  const std::string dir = std::filesystem::temp_directory_path().string();
+  const std::string cage = std::string(OCTOMOTION_SOURCE_DIR) + "/robots/scenes/cage.yaml";
+  const std::string good = dir + "/refine_key_" + std::to_string(::getpid()) + ".yaml";
+  const std::string bad = dir + "/refine_bad_" + std::to_string(::getpid()) + ".yaml";
+  std::string text;
+  {
+    std::ifstream in(cage);
+    text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  const std::size_t at = text.find("octree:\n");
+  ASSERT_NE(at, std::string::npos);
+  std::ofstream(good) << text.substr(0, at + 8) << "  refine: exact\n" << text.substr(at + 8);
+  std::ofstream(bad) << text.substr(0, at + 8) << "  refine: fcl\n" << text.substr(at + 8);
+  EXPECT_EQ(loadScene(good).octree.refine, RefineMode::kExact);
+  EXPECT_EQ(loadScene(cage).octree.refine, RefineMode::kNone);
+  try {
+    loadScene(bad);
+    ADD_FAILURE() << "refine: fcl accepted";
+  } catch (const FileError& e) {
+    EXPECT_NE(std::string(e.what()).find("octree.refine"), std::string::npos) << e.what();
+  }
+  std::filesystem::remove(good);
+  std::filesystem::remove(bad);
+}
+
 // The real Panda (its URDF, SRDF and meshes) in the first scene of four MotionBenchMaker sets.
 TEST(RefineExact, PandaInMotionBenchMakerScenesAgreesWithFcl) {
   const test::MbmProblems set;

@@ -196,6 +196,11 @@ SceneInputs loadSceneInputs(const std::string& scene_path, const SceneOverrides&
   if (overrides.self_pair_tables) spec.octree.self_pair_tables = *overrides.self_pair_tables;
   if (overrides.exact_primitives) spec.octree.exact_primitives = *overrides.exact_primitives;
   if (overrides.refine) spec.octree.refine = *overrides.refine;
+  if (spec.octree.refine == RefineMode::kExact && spec.octree.rounding != Rounding::kConservative) {
+    throw InvalidArgument(spec.path +
+                          ": octree.refine exact needs conservative rounding (the octree "
+                          "certifies freedom only when its voxels contain the geometry)");
+  }
 
   // The robot.
   std::optional<RobotModel>& robot = inputs.robot;
