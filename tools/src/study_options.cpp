@@ -113,7 +113,7 @@ const OptionTable<StudyCommandOptions>& studyOptions() {
     // finishStudyOptions can name the replacement, but not listed.
     t.append(sceneOptions(), [](O& o) -> SceneOverrides& { return o.study.overrides; },
              {"--resolution", "--rounding", "--checker", "--planner", "--link-resolution",
-              "--self-link-resolution"});
+              "--self-link-resolution", "--refine"});
     return t;
   }();
   return table;
@@ -128,6 +128,7 @@ void finishStudyOptions(StudyCommandOptions& options) {
         "--self-link-resolution do not apply; use --resolutions, --roundings, --paths, "
         "--planners, --link-ratio, --self-link-ratio");
   }
+  if (o.refine) throw InvalidArgument("bench: --refine does not apply; use --refine-exact");
   if (o.seed) options.study.seed = *o.seed;
 }
 
