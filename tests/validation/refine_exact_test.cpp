@@ -13,6 +13,7 @@
 #include <iostream>
 #include <random>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <unistd.h>
@@ -165,6 +166,37 @@ TEST(RefineExact, ClearanceUsesFclBelowTheMarginAndExplainAgrees) {
   }
   EXPECT_GT(below, 0u);
   EXPECT_GT(above, 0u);
+}
+
+// One model shared by four threads, each with its own scratch, gives the answers of one thread
+// (the FCL geometry is constant; each thread poses it in its own scratch).
+TEST(RefineExact, ThreadsShareTheModel) {
+  const std::string path = std::string(OCTOMOTION_SOURCE_DIR) + "/robots/scenes/cage.yaml";
+  const PlanningScene scene = loadShippedExact(path);
+  const OctreeBackend checked(scene.model, CheckerPath::kFused);
+  const std::vector<Sample> samples = uniformSamples(scene, 800, kSeed + 4);
+  std::vector<char> expected(samples.size());
+  {
+    const auto scratch = checked.makeBackendScratch();
+    for (std::size_t i = 0; i < samples.size(); ++i) {
+      expected[i] =
+          checked.inCollision(samples[i].q.data(), samples[i].q.size(), samples[i].X_WB, *scratch);
+    }
+  }
+  std::vector<std::size_t> wrong(4, 0);
+  std::vector<std::thread> threads;
+  for (std::size_t t = 0; t < wrong.size(); ++t) {
+    threads.emplace_back([&, t] {
+      const auto scratch = checked.makeBackendScratch();
+      for (std::size_t k = 0; k < samples.size(); ++k) {
+        const std::size_t i = (k + 200 * t) % samples.size();  // each thread its own order
+        wrong[t] += checked.inCollision(samples[i].q.data(), samples[i].q.size(), samples[i].X_WB,
+                                        *scratch) != (expected[i] != 0);
+      }
+    });
+  }
+  for (std::thread& thread : threads) thread.join();
+  for (std::size_t w : wrong) EXPECT_EQ(w, 0u);
 }
 
 TEST(RefineExact, CentreRoundingIsRefused) {
