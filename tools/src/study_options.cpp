@@ -51,6 +51,10 @@ const OptionTable<StudyCommandOptions>& studyOptions() {
              o.study.roundings.push_back(roundingFromString(r.c_str()));
            }
          }},
+        {"--refine-exact", nullptr,
+         "also conservative rounding refined with FCL (--refine exact; rows\n"
+         "\"conservative+exact\")",
+         [](const std::string&, const std::string&, O& o) { o.study.refine_exact = true; }},
         {"--paths", "LIST", "octree,octree-fused (default both)",
          [](const std::string& flag, const std::string& v, O& o) {
            o.study.octree_checkers.clear();
@@ -109,7 +113,7 @@ const OptionTable<StudyCommandOptions>& studyOptions() {
     // finishStudyOptions can name the replacement, but not listed.
     t.append(sceneOptions(), [](O& o) -> SceneOverrides& { return o.study.overrides; },
              {"--resolution", "--rounding", "--checker", "--planner", "--link-resolution",
-              "--self-link-resolution"});
+              "--self-link-resolution", "--refine"});
     return t;
   }();
   return table;
@@ -124,6 +128,7 @@ void finishStudyOptions(StudyCommandOptions& options) {
         "--self-link-resolution do not apply; use --resolutions, --roundings, --paths, "
         "--planners, --link-ratio, --self-link-ratio");
   }
+  if (o.refine) throw InvalidArgument("bench: --refine does not apply; use --refine-exact");
   if (o.seed) options.study.seed = *o.seed;
 }
 

@@ -372,8 +372,13 @@ TradeStudyResult runTradeStudy(const TradeStudyOptions& options) {
             " skipped: " + e.what());
       }
     }
-    for (Rounding rounding : options.roundings) {
+    // Each rounding as given, then (refine_exact) conservative rounding refined with FCL.
+    std::vector<std::pair<Rounding, RefineMode>> modes;
+    for (Rounding rounding : options.roundings) modes.emplace_back(rounding, RefineMode::kNone);
+    if (options.refine_exact) modes.emplace_back(Rounding::kConservative, RefineMode::kExact);
+    for (const auto& [rounding, refine] : modes) {
       CollisionModelOptions mo;
+      mo.refine = refine;
       mo.resolution = resolution;
       mo.link_resolution = resolution * result.link_resolution_ratio;
       mo.self_link_resolution = resolution * result.self_link_resolution_ratio;
@@ -409,7 +414,8 @@ TradeStudyResult runTradeStudy(const TradeStudyOptions& options) {
         row.scene = spec.name;
         row.checker = checker;
         row.resolution = resolution;
-        row.rounding = toString(rounding);
+        row.rounding =
+            std::string(toString(rounding)) + (refine == RefineMode::kExact ? "+exact" : "");
         fillRow(m, fcl_m, options.keep_answers, row);
         row.memory_bytes = octreeBytes(*model);
         row.build_seconds = build;

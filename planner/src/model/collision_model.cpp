@@ -9,6 +9,7 @@
 #include "internal/collision_model_builder.h"
 #include "internal/collision_model_parts.h"
 #include "internal/explain_data.h"
+#include "internal/refine.h"
 
 namespace octomotion {
 
@@ -27,9 +28,27 @@ OctreeCollisionModel::OctreeCollisionModel(RobotModel robot,
                                            const CollisionModelOptions& options)
     : id_(nextModelId()), robot_(std::move(robot)), options_(options) {
   if (!environment) throw InvalidArgument("OctreeCollisionModel: no environment");
+  if (options_.refine == RefineMode::kExact) {
+    // Centre rounding's "no shared voxel" does not prove freedom, so nothing could be certified.
+    if (options_.rounding != Rounding::kConservative) {
+      throw InvalidArgument(
+          "refine exact needs conservative rounding (the octree certifies "
+          "freedom only when its voxels contain the geometry)");
+    }
+    // Both prove a shared voxel, not a contact of the exact shapes.
+    options_.core_boxes = false;
+    options_.fold_static = false;
+  }
   const auto start = std::chrono::steady_clock::now();
   parts_ = detail::CollisionModelBuilder(robot_, *environment, options_, report_).build();
   parts_->world.objects = *environment;  // for world updates (world_updates.cpp)
+  report_.refine = options_.refine;
+  if (options_.refine == RefineMode::kExact) {
+    const auto refine_start = std::chrono::steady_clock::now();
+    refine_ = std::make_unique<const detail::RefineData>(robot_, *environment, grid(), options_);
+    report_.refine_build_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - refine_start).count();
+  }
   report_.build_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   resetExplainData();
@@ -68,10 +87,12 @@ CheckScratch OctreeCollisionModel::makeScratch() const {
 }
 
 bool OctreeCollisionModel::environmentInCollision(CheckerPath path, CheckScratch& scratch) const {
+  if (refine_) return refinedEnvironmentInCollision(path, scratch);
   return parts_->environment.inCollision(parts_->links, path, scratch.robot, scratch.fused);
 }
 
 bool OctreeCollisionModel::selfInCollision(CheckerPath path, CheckScratch& scratch) const {
+  if (refine_) return refinedSelfInCollision(path, scratch);
   return parts_->self.inCollision(parts_->links, path, scratch);
 }
 
@@ -88,6 +109,7 @@ bool OctreeCollisionModel::inCollision(const double* q, std::size_t q_size,
 }
 
 double OctreeCollisionModel::clearanceLowerBound(const CheckScratch& scratch) const {
+  if (refine_) return refinedClearance(scratch, options_.refine_clearance_margin);
   return options_.clearance == ClearanceMethod::kPointOctree ? clearanceLowerBoundPoints(scratch)
                                                              : clearanceLowerBoundTree(scratch);
 }

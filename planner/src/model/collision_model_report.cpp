@@ -107,6 +107,13 @@ std::string CollisionModelReport::toString() const {
   for (const std::string& what : static_collisions) {
     out << "\nEVERY STATE IS IN COLLISION: " << what;
   }
+  if (refine == RefineMode::kExact) {
+    out << "\nrefine: exact (FCL decides each link-object and link-link pair whose voxels meet; "
+           "its geometry built in "
+        << refine_build_seconds << " s)";
+  } else {
+    out << "\nrefine: none (the voxels decide)";
+  }
   out << "\nmodel built in " << build_seconds << " s\n";
   return out.str();
 }

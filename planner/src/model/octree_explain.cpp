@@ -155,6 +155,8 @@ void OctreeCollisionModel::explainContacts(CheckerPath path, CheckScratch& scrat
         fcl_internal::RobotScratch& posed = exactShapes();  // builds data.robot
         return data.robot->linkCollides(posed, t->link, *shape);
       }();
+      // Refine exact: the answer is FCL's, so only objects FCL finds touching are reasons.
+      if (refine_ && shape && !touching) continue;
       add(InvalidityReason::Kind::kEnvironment, t->link, items[i].spec.name, touching,
           shape != nullptr, grid.voxelSize());
       if (!all) return;
@@ -162,12 +164,15 @@ void OctreeCollisionModel::explainContacts(CheckerPath path, CheckScratch& scrat
   }
 
   // The self pairs.
-  for (std::size_t pair : parts.self.hitPairs(links, path, scratch, all)) {
+  for (std::size_t pair : parts.self.hitPairs(links, path, scratch, all || refine_)) {
     const detail::SelfPair& p = parts.self.pairs[pair];
     const int a = links.links[p.a].link, b = links.links[p.b].link;
     fcl_internal::RobotScratch& posed = exactShapes();  // builds data.robot
-    add(InvalidityReason::Kind::kSelf, a, robot_.link(b).name,
-        data.robot->linksCollide(posed, a, b), true, report_.self_link_resolution);
+    const bool touching = data.robot->linksCollide(posed, a, b);
+    if (refine_ && !touching) continue;  // refine exact: FCL's answer
+    add(InvalidityReason::Kind::kSelf, a, robot_.link(b).name, touching, true,
+        report_.self_link_resolution);
+    if (refine_ && !all) return;
   }
 }
 

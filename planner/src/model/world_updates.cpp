@@ -192,6 +192,11 @@ std::vector<std::string> OctreeCollisionModel::attachedObjects() const {
 }
 
 void OctreeCollisionModel::requireUpdatable() const {
+  if (options_.refine == RefineMode::kExact) {
+    throw InvalidArgument(
+        "world updates: not available for a model built with refine exact "
+        "(CollisionModelOptions::refine); build a new model instead");
+  }
   if (options_.exact_primitives) {
     throw InvalidArgument(
         "world updates: not available for a model built with exact primitives "

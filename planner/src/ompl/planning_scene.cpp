@@ -195,6 +195,12 @@ SceneInputs loadSceneInputs(const std::string& scene_path, const SceneOverrides&
   }
   if (overrides.self_pair_tables) spec.octree.self_pair_tables = *overrides.self_pair_tables;
   if (overrides.exact_primitives) spec.octree.exact_primitives = *overrides.exact_primitives;
+  if (overrides.refine) spec.octree.refine = *overrides.refine;
+  if (spec.octree.refine == RefineMode::kExact && spec.octree.rounding != Rounding::kConservative) {
+    throw InvalidArgument(spec.path +
+                          ": octree.refine exact needs conservative rounding (the octree "
+                          "certifies freedom only when its voxels contain the geometry)");
+  }
 
   // The robot.
   std::optional<RobotModel>& robot = inputs.robot;
@@ -299,6 +305,7 @@ PlanningScene loadPlanningScene(const std::string& scene_path, const SceneOverri
   options.self_link_resolution = spec.octree.self_link_resolution;
   options.self_pair_tables = spec.octree.self_pair_tables;
   options.exact_primitives = spec.octree.exact_primitives;
+  options.refine = spec.octree.refine;
   options.fit_universe_to_reach = overrides.fit_universe_to_reach;
   options.rounding = spec.octree.rounding;
   if (spec.octree.max_surface_voxels) options.max_surface_voxels = *spec.octree.max_surface_voxels;

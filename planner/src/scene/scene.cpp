@@ -314,7 +314,7 @@ void parseEnvironment(const YamlReader& r, const YAML::Node& node, SceneSpec& sc
 void parseOctree(const YamlReader& r, const YAML::Node& node, SceneSpec& scene) {
   r.allowOnly(node, "octree",
               {"resolution", "link_resolution", "self_link_resolution", "self_pair_tables",
-               "exact_primitives", "rounding", "checker", "max_surface_voxels"});
+               "exact_primitives", "rounding", "checker", "max_surface_voxels", "refine"});
   OctreeSettings& s = scene.octree;
   if (const YAML::Node res = node["resolution"]) {
     if (!(res.IsScalar() && res.Scalar() == "auto")) {
@@ -347,6 +347,14 @@ void parseOctree(const YamlReader& r, const YAML::Node& node, SceneSpec& scene) 
       s.rounding = roundingFromString(v.c_str());
     } catch (const InvalidArgument& e) {
       r.fail("octree.rounding", node["rounding"], e.what());
+    }
+  }
+  if (node["refine"]) {
+    const std::string v = r.string(node["refine"], "octree.refine");
+    try {
+      s.refine = parseRefineMode(v);
+    } catch (const InvalidArgument& e) {
+      r.fail("octree.refine", node["refine"], e.what());
     }
   }
   if (node["checker"]) {

@@ -76,6 +76,21 @@ class SelfCollision {
     }
     return pairsInCollision(links, path, scratch);
   }
+  // RefineMode::kExact: like inCollision, but a pair whose stages hit counts only when
+  // `confirm(pair)` (FCL on the two links) says so; the loop goes on past unconfirmed pairs.
+  // Always the pairs loop (the broad phase gives the same candidates).
+  template <class Confirm>
+  bool confirmedInCollision(const LinkModels& links, CheckerPath path, CheckScratch& scratch,
+                            const Confirm& confirm) const {
+    placeCentres(links, scratch);
+    for (const SelfPair& p : pairs) {
+      if (spheresMeet(p, scratch.centres_W[p.a], scratch.centres_W[p.b]) &&
+          pairStagesHit(p, links, path, scratch) && confirm(p)) {
+        return true;
+      }
+    }
+    return false;
+  }
   // For explanations: the indices in `pairs` of every checked pair that meets (the first only
   // unless `all`), by the same stages as inCollision, over all pairs.
   std::vector<std::size_t> hitPairs(const LinkModels& links, CheckerPath path,

@@ -32,6 +32,9 @@ struct TradeStudyOptions {
   SceneOverrides overrides;
   std::vector<double> resolutions;  // metres; empty: defaultResolutions()
   std::vector<Rounding> roundings = {Rounding::kConservative, Rounding::kCenter};
+  // Also conservative rounding refined with FCL (RefineMode::kExact), rounding label
+  // "conservative+exact".
+  bool refine_exact = false;
   // The octree checker paths measured (kOctree, kOctreeFused; the FCL kinds are always run).
   std::vector<CheckerKind> octree_checkers = {CheckerKind::kOctree, CheckerKind::kOctreeFused};
   bool fcl_octomap = true;  // also FCL+OctoMap at every resolution (when it is built in)

@@ -30,6 +30,7 @@
 #include "octomotion/planner/robot/robot_model.h"
 #include "octomotion/planner/scene/attached_object.h"
 #include "octomotion/planner/scene/environment_geometry.h"
+#include "octomotion/planner/scene/scene.h"
 
 namespace octomotion::broadphase {
 class NObjectsOctree;  // broadphase/n_objects_octree.h
@@ -40,6 +41,8 @@ namespace octomotion {
 namespace detail {
 struct CollisionModelParts;
 struct ExplainData;
+struct RefineData;
+struct RefineScratch;
 }  // namespace detail
 
 // kMoveTree: moveTree places the source tree on the target's grid, then the parallel traversal
@@ -186,6 +189,14 @@ struct CollisionModelOptions {
   // the robot reaches must fit. Default: the reach where it meets the environment's box, tighter
   // and with the best of kOriginShifts origins, but an update that reaches outside it is refused.
   bool fit_universe_to_reach = false;
+  // RefineMode::kExact: the octree decides what it can certify, FCL the rest (see RefineMode).
+  // The FCL geometry of the robot and of every object is built with the model. Certain contacts
+  // (core_boxes) and static folding (fold_static) prove a shared voxel, not an exact contact, so
+  // they are off in this mode. World updates are refused.
+  RefineMode refine = RefineMode::kNone;
+  // RefineMode::kExact: clearanceLowerBound returns FCL's exact distance to the environment when
+  // the octree's bound is below this (metres), else the octree's bound.
+  double refine_clearance_margin = 0.05;
   WarningSink warnings;
 };
 
@@ -257,6 +268,8 @@ struct CollisionModelReport {
   std::vector<std::string> static_links;
   std::vector<std::pair<std::string, std::string>> constant_pairs;
   std::vector<std::string> static_collisions;
+  RefineMode refine = RefineMode::kNone;  // CollisionModelOptions::refine
+  double refine_build_seconds = 0;        // the FCL geometry of RefineMode::kExact
   double build_seconds = 0;
   std::string toString() const;  // the human-readable "what was modelled" summary
 };
@@ -281,12 +294,33 @@ class SelfBroadPhaseScratch {
   std::unique_ptr<broadphase::NObjectsOctree> octree_;
 };
 
+// RefineMode::kExact: the posed FCL objects of one thread, opaque here, made by the first
+// refined query. A copy starts empty (it is remade on use), so copies never share it.
+class RefineScratchHolder {
+ public:
+  RefineScratchHolder() noexcept;
+  RefineScratchHolder(const RefineScratchHolder& other);
+  RefineScratchHolder(RefineScratchHolder&& other) noexcept;
+  RefineScratchHolder& operator=(const RefineScratchHolder& other);
+  RefineScratchHolder& operator=(RefineScratchHolder&& other) noexcept;
+  ~RefineScratchHolder();
+
+  detail::RefineScratch* get() const { return scratch_.get(); }
+  void reset(std::unique_ptr<detail::RefineScratch> scratch);
+
+ private:
+  std::unique_ptr<detail::RefineScratch> scratch_;
+};
+
 // Per-thread scratch for queries: FK results, the fused query's buffers and (kNObjectsOctree)
 // the self-collision broad phase's octree. One per thread.
 struct CheckScratch {
   RobotData robot;
   CollisionScratch fused;
   SelfBroadPhaseScratch self_broad_phase;
+  // RefineMode::kExact only; mutable because clearanceLowerBound (const scratch) poses FCL
+  // objects in it.
+  mutable RefineScratchHolder refine;
   std::vector<Eigen::Vector3d> centres_W;  // per modelled link: bounding-sphere centre in W
   std::uint64_t owner = 0;                 // id() of the model it was made for
 };
@@ -348,6 +382,11 @@ class OctreeCollisionModel {
   double clearanceLowerBound(const CheckScratch& scratch) const;
   double clearanceLowerBoundTree(const CheckScratch& scratch) const;
   double clearanceLowerBoundPoints(const CheckScratch& scratch) const;
+  // RefineMode::kExact: the octree's bound when it is at least `margin`, else FCL's exact
+  // distance between the robot's geometry and the environment's objects (point clouds and
+  // OctoMaps: their voxels). Without kExact: clearanceLowerBound.
+  double refinedClearance(const CheckScratch& scratch, double margin) const;
+  RefineMode refine() const { return options_.refine; }
 
   // Read-only view of a modelled link's source tree (in its link frame L), for viewers and
   // exports: moveTree(*source, X_WL, grid(), rounding()) is the link's placement at pose X_WL.
@@ -404,6 +443,10 @@ class OctreeCollisionModel {
 
   std::unique_ptr<detail::CollisionModelParts> parts_;
   std::unique_ptr<detail::ExplainData> explain_;  // built on first use (octree_explain.cpp)
+  // RefineMode::kExact: the FCL geometry (refine.cpp); null otherwise.
+  std::unique_ptr<const detail::RefineData> refine_;
+  bool refinedEnvironmentInCollision(CheckerPath path, CheckScratch& scratch) const;
+  bool refinedSelfInCollision(CheckerPath path, CheckScratch& scratch) const;
 };
 
 }  // namespace octomotion

@@ -39,6 +39,7 @@ struct SceneOverrides {
   std::optional<double> self_link_resolution;  // > 0; octree.self_link_resolution
   std::optional<bool> self_pair_tables;        // octree.self_pair_tables
   std::optional<bool> exact_primitives;        // octree.exact_primitives
+  std::optional<RefineMode> refine;            // octree.refine
   // loadPlanningScene refuses a start or goal in collision (requireFreeStartAndGoal); commands
   // that look at colliding states on purpose (check, view) turn it off.
   bool require_free_start_goal = true;

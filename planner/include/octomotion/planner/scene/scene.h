@@ -66,6 +66,19 @@ inline bool isOctreeChecker(CheckerKind kind) {
   return kind == CheckerKind::kOctree || kind == CheckerKind::kOctreeFused;
 }
 
+// What decides the pairs the octree cannot certify (docs/planner.md, "Exact refine mode"):
+// kNone: the octree's voxels (conservative rounding: never misses, rejects some free states
+//   within the voxels' margin of contact);
+// kExact: the octree certifies freedom (no shared voxel under conservative rounding); each
+//   link-object or link-link pair whose voxels meet is decided by FCL on the original geometry
+//   (the link's meshes and primitives against that object; the two links), so the answer is
+//   FCL's. Conservative rounding only (centre rounding is refused: its "free" is not a proof).
+// In files and on command lines: "none", "exact".
+enum class RefineMode { kNone, kExact };
+const char* refineModeName(RefineMode mode);
+// The mode a name stands for, or InvalidArgument naming the known ones.
+RefineMode parseRefineMode(const std::string& name);
+
 struct OctreeSettings {
   std::optional<double> resolution;       // metres; empty = auto (derived from the scene)
   std::optional<double> link_resolution;  // coarser per-link source trees; empty = resolution
@@ -75,6 +88,8 @@ struct OctreeSettings {
   bool self_pair_tables = false;
   // Contacts confirmed against primitives' exact shapes (CollisionModelOptions::exact_primitives).
   bool exact_primitives = false;
+  // What decides the pairs the voxels cannot certify (CollisionModelOptions::refine).
+  RefineMode refine = RefineMode::kNone;
   Rounding rounding = Rounding::kConservative;
   CheckerKind checker = CheckerKind::kOctreeFused;
   // Memory guard (CollisionModelOptions::max_surface_voxels); empty = the library default.

@@ -1,0 +1,130 @@
+// Exact refine mode (CollisionModelOptions::refine, docs/planner.md "Exact refine mode") on the
+// real Panda in MotionBenchMaker scenes: per scene, the same uniform joint states checked by
+// exact FCL, by the fused octree checker with conservative rounding, and by the same checker
+// refined with FCL, in one run. Prints per checker the mean check time (second pass over the
+// states), the share of FCL-free states it rejects (false positives), the contacts it misses,
+// and FCL's mean over its own. A plain program like planner_self_pair_tables_bench; needs
+// ../shared/data (MotionBenchMaker problems and the Panda).
+// Usage: build/bench/planner_refine_bench [STATES] [SETS] [RESOLUTION]   (default 5000 4 0.01)
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+
+#include <ompl/util/Console.h>
+
+#include "joint_states.h"
+#include "mbm_problems.h"
+#include "octomotion/error.h"
+#include "octomotion/planner/ompl/planning_scene.h"
+#include "octomotion/planner/reference/fcl_collision_model.h"
+
+namespace {
+
+using namespace octomotion;
+using Clock = std::chrono::steady_clock;
+
+double seconds(Clock::time_point a, Clock::time_point b) {
+  return std::chrono::duration<double>(b - a).count();
+}
+
+int run(int argc, char** argv) {
+  const int count = argc > 1 ? std::atoi(argv[1]) : 5000;
+  const int sets = argc > 2 ? std::atoi(argv[2]) : 4;
+  const double resolution = argc > 3 ? std::atof(argv[3]) : 0.01;
+  if (count < 1 || sets < 1 || !(resolution > 0)) {
+    throw InvalidArgument("STATES and SETS must be >= 1, RESOLUTION > 0");
+  }
+  const test::MbmProblems problems;
+  const std::string panda = test::MbmProblems::panda();
+  if (problems.problems().empty() || !std::filesystem::exists(panda + "/panda.urdf")) {
+    throw InvalidArgument("no MotionBenchMaker problems or Panda under ../shared/data");
+  }
+  ompl::msg::setLogLevel(ompl::msg::LOG_ERROR);
+  std::vector<test::MbmProblem> first = problems.firstOfEachSet();
+  first.resize(std::min<std::size_t>(first.size(), static_cast<std::size_t>(sets)));
+  std::printf("Panda (7 planned joints) at %g m, %d uniform states per scene; mean check time\n",
+              resolution, count);
+  for (const test::MbmProblem& p : first) {
+    const std::string scene_path = problems.folder() + "/" + p.set + "_bench.yaml";
+    std::ofstream(scene_path) << "robot: {urdf: " << panda << "/panda.urdf, srdf: " << panda
+                              << "/panda.srdf}\nenvironment:\n  - moveit_scene: " << p.scene
+                              << "\nproblem: {moveit_request: " << p.request << "}\n";
+    SceneOverrides overrides;
+    overrides.resolution = resolution;
+    overrides.require_free_start_goal = false;
+    const PlanningScene scene = loadPlanningScene(scene_path, overrides, [](const std::string&) {});
+    const RobotModel& robot = scene.model->robot();
+    const auto states = test::uniformJointStates(robot, count, 7);
+    const auto fcl = scene.fclModel();
+    auto exact = fcl->makeScratch();
+    std::vector<char> truth(states.size());
+    double fcl_seconds = 0;
+    for (int pass = 0; pass < 2; ++pass) {
+      const auto t0 = Clock::now();
+      for (std::size_t i = 0; i < states.size(); ++i) {
+        fcl->setConfiguration(states[i].data(), states[i].size(), Eigen::Isometry3d::Identity(),
+                              *exact);
+        truth[i] = fcl->inCollision(*exact);
+      }
+      fcl_seconds = seconds(t0, Clock::now());
+    }
+    int free_states = 0;
+    for (const char t : truth) free_states += !t;
+    const double fcl_mean = 1e6 * fcl_seconds / count;
+    std::printf("%s: %.1f %% of the states free for FCL\n", p.set.c_str(),
+                100.0 * free_states / count);
+    std::printf("  %-22s mean %8.3f us\n", "fcl", fcl_mean);
+    // The library's default trees, then refined; then refined with the self pairs' trees at the
+    // link trees' voxel (a narrower self margin leaves fewer pairs to FCL); then refined with
+    // self-pair tables (cells certified by FCL at build time skip the pair's tests).
+    for (int setting = 0; setting < 4; ++setting) {
+      const RefineMode refine = setting == 0 ? RefineMode::kNone : RefineMode::kExact;
+      CollisionModelOptions options;
+      options.resolution = resolution;
+      options.X_WB = scene.model->baseMount();
+      options.refine = refine;
+      if (setting == 2) options.self_link_resolution = resolution * kDefaultLinkResolutionRatio;
+      options.self_pair_tables = setting == 3;
+      const auto b0 = Clock::now();
+      const OctreeCollisionModel model(robot, *scene.environment, options);
+      const double build = seconds(b0, Clock::now());
+      CheckScratch scratch = model.makeScratch();
+      int false_positives = 0, missed = 0;
+      double check_seconds = 0;
+      for (int pass = 0; pass < 2; ++pass) {
+        false_positives = missed = 0;
+        const auto t0 = Clock::now();
+        for (std::size_t i = 0; i < states.size(); ++i) {
+          const bool hit = model.inCollision(states[i].data(), states[i].size(), options.X_WB,
+                                             CheckerPath::kFused, scratch);
+          false_positives += hit && !truth[i];
+          missed += !hit && truth[i];
+        }
+        check_seconds = seconds(t0, Clock::now());
+      }
+      const double mean = 1e6 * check_seconds / count;
+      std::printf("  %-22s mean %8.3f us, FP %5.2f %%, missed %d, FCL / this %5.2f, build %.2f s\n",
+                  setting == 0   ? "octree-fused none"
+                  : setting == 1 ? "octree-fused exact"
+                  : setting == 2 ? "exact, self at r/4"
+                                 : "exact, self tables",
+                  mean, 100.0 * false_positives / std::max(free_states, 1), missed, fcl_mean / mean,
+                  build);
+    }
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 1;
+  }
+}
