@@ -14,6 +14,7 @@
 #include <assimp/scene.h>
 #include <assimp/Importer.hpp>
 
+#include "internal/collada_check.h"
 #include "internal/mesh.h"
 #include "octomotion/error.h"
 #include "octomotion/input_limits.h"
@@ -156,6 +157,7 @@ void requireShallowXml(const std::string& path, std::uintmax_t max_bytes) {
     if (text.find("<COLLADA") != std::string::npos) {
       requireLocalSourcesDefined(text, path);
       requireIntegerIndexLists(text, path);
+      detail::validateCollada(text, path);
     }
   }
 }
