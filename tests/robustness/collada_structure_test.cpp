@@ -193,5 +193,24 @@ TEST_F(ColladaStructure, FuzzerFindingsAreRefused) {
   }
 }
 
+TEST_F(ColladaStructure, FilesAssimpWouldReadAsColladaAreAllValidated) {
+  // The fuzzer's out-of-memory input: junk before the XML made the pre-scan take the file for
+  // something else, and assimp's parser skipped the junk and read it as Collada unchecked.
+  const std::string junk = std::string(OCTOMOTION_TEST_DATA_DIR) + "/bad/collada_junk_head.dae";
+  try {
+    loadMesh(junk);
+    ADD_FAILURE() << "accepted";
+  } catch (const FileError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("collada_junk_head.dae"));
+    EXPECT_THAT(e.what(), HasSubstr("must start with an XML element"));
+  }
+  // Whatever the extension, a file with "<COLLADA" near its start is validated.
+  expectRefused("disguised.mesh", "junk" + mutated(R"(count="12")", R"(count="13")"),
+                "must start with an XML element");
+  expectRefused("disguised.xml", mutated(R"(count="12")", R"(count="13")"),
+                "has count=\"13\" but holds 12 values");
+  expectRefused("zipped.zae", tetraText(), "zipped COLLADA (.zae) is not supported");
+}
+
 }  // namespace
 }  // namespace octomotion
