@@ -24,10 +24,8 @@ build=${OCTOMOTION_FUZZ_BUILD_DIR:-$root/build-fuzz}
 
 targets=("$@")
 if ((${#targets[@]} == 0)); then
-  # mesh_dae is left out: assimp 5.2's Collada importer still crashes on inputs the fuzzer finds
-  # within 20 s (fuzz/known/README.md). Run it explicitly: scripts/fuzz.sh 60 mesh_dae.
   for dir in "$root"/fuzz/corpus/*/; do
-    [[ $(basename "$dir") == mesh_dae ]] || targets+=("$(basename "$dir")")
+    targets+=("$(basename "$dir")")
   done
 fi
 

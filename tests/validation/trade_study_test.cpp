@@ -7,11 +7,13 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "octomotion/error.h"
+#include "octomotion/tools/experiment_name.h"
 #include "octomotion/tools/trade_study.h"
 
 namespace octomotion {
@@ -250,6 +252,35 @@ TEST(TradeStudyTest, SelfPairTablesAreHonoured) {
   EXPECT_NE(md.str().find("Self-pair tables on"), std::string::npos);
 }
 
+// The experiment name as OMPL's scripts/ompl_benchmark_statistics.py reads a log (Planner
+// Arena's import): an optional "<library> version <v>" line, then a line whose first word is
+// "Experiment", of which it keeps the last whitespace-separated word. Debian's libompl-dev
+// does not ship the script and nothing is downloaded in tests, so its rule is followed here.
+std::string arenaExperimentName(const std::string& log_text) {
+  std::istringstream in(log_text);
+  std::string line;
+  for (int i = 0; i < 2 && std::getline(in, line); ++i) {
+    std::istringstream words(line);
+    std::vector<std::string> tokens;
+    for (std::string w; words >> w;) tokens.push_back(w);
+    if (i == 0 && tokens.size() > 1 && tokens[1] == "version") continue;
+    if (tokens.empty() || tokens[0] != "Experiment") return "";  // the script stops here
+    return tokens.back();
+  }
+  return "";
+}
+
+TEST(TradeStudyTest, ExperimentNamesAreOneWordKeepingSceneCheckerAndResolution) {
+  EXPECT_EQ(experimentName("bookshelf small", "octree-fused", 0.02, "conservative"),
+            "bookshelf-small_octree-fused_2cm_conservative");
+  EXPECT_EQ(experimentName("shelf_0001", "fcl", 0.005), "shelf_0001_fcl_5mm");
+  EXPECT_EQ(experimentName("a\tb", "fcl", 0.0), "a-b_fcl");
+  const std::string name = experimentName("x y", "octree-fused", 0.0125, "nearest");
+  EXPECT_EQ(arenaExperimentName("Experiment " + name + "\n"), name);
+  EXPECT_EQ(arenaExperimentName("OMPL version 1.5.2\nExperiment " + name + "\n"), name);
+  EXPECT_NE(experimentName("s", "fcl", 0.01), experimentName("s", "fcl", 0.02));
+}
+
 // Planning through ompl::tools::Benchmark: every planning row has its runs, and the planner's
 // own solve time (measured inside Benchmark's run, without its termination-condition thread) is
 // positive and never above Benchmark's time of the same runs; the .log files carry both.
@@ -264,6 +295,7 @@ TEST(TradeStudyTest, PlanningRecordsBenchmarksTimeAndThePlannersOwn) {
   std::filesystem::create_directories(dir);
   options.log_dir = dir.string();
   const TradeStudyResult result = runTradeStudy(options);
+  std::set<std::string> experiments;
   ASSERT_EQ(result.planning.size(), 2u);  // FCL and the fused conservative octree at 2 cm
   for (const PlanRow& r : result.planning) {
     SCOPED_TRACE(checkerKindName(r.checker));
@@ -276,7 +308,15 @@ TEST(TradeStudyTest, PlanningRecordsBenchmarksTimeAndThePlannersOwn) {
     const std::string text((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>());
     EXPECT_NE(text.find("solve time REAL"), std::string::npos);
     EXPECT_NE(text.find("\ntime REAL"), std::string::npos);  // Benchmark's own
+    // What Planner Arena's import keeps of the experiment line is the whole name.
+    const std::string expected =
+        experimentName(r.scene, checkerKindName(r.checker), r.resolution, r.rounding);
+    EXPECT_NE(text.find("\nExperiment " + expected + "\n"), std::string::npos)
+        << text.substr(0, 120);
+    EXPECT_EQ(arenaExperimentName(text), expected);
+    experiments.insert(arenaExperimentName(text));
   }
+  EXPECT_EQ(experiments.size(), result.planning.size());  // FCL and octree stay apart
   std::ostringstream md;
   writeMarkdown(result, md);
   EXPECT_NE(md.str().find("median solve s"), std::string::npos);

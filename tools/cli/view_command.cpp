@@ -32,8 +32,9 @@ view options:
   --max-boxes N        at most N boxes per tree; bigger trees are drawn coarsened
                        (default 150000)
   --no-link-trees      leave out the links' voxel trees
-  --viewer-dir DIR     the viewer's sources (default: $OCTOMOTION_VIEWER_DIR, else viewer/
-                       next to the build tree or in the current directory)
+  --viewer-dir DIR     the viewer's sources (default: $OCTOMOTION_VIEWER_DIR, else the
+                       installed PREFIX/share/octomotion/viewer, else viewer/ next to the
+                       build tree or in the current directory)
 options: the scene options of `octomotion --help` (--resolution, --rounding, ...)
 )";
 
@@ -51,7 +52,8 @@ bool isViewerDir(const fs::path& dir) {
 }
 
 // The viewer's sources: the flag, the environment, then places relative to the executable
-// (build-*/planner/octomotion -> viewer/) and the current directory.
+// (installed: <prefix>/share/octomotion/viewer; in a build tree: build-*/planner/octomotion ->
+// viewer/) and the current directory.
 std::optional<fs::path> findViewerDir(const std::string& flag_value) {
   if (!flag_value.empty()) {
     if (!isViewerDir(flag_value)) {
@@ -70,7 +72,9 @@ std::optional<fs::path> findViewerDir(const std::string& flag_value) {
   const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
   if (!ec) {
     const fs::path bin = exe.parent_path();
-    candidates = {bin / "../../viewer", bin / "../viewer", bin / "../share/octomotion/viewer"};
+    // The installed viewer first (cmake --install puts it under <prefix>/share/octomotion), so
+    // an installed command never picks up a stray viewer/ next to its prefix.
+    candidates = {bin / "../share/octomotion/viewer", bin / "../../viewer", bin / "../viewer"};
   }
   candidates.push_back(fs::current_path(ec) / "viewer");
   for (const fs::path& c : candidates) {

@@ -16,6 +16,7 @@
 #include "octomotion/planner/ompl/link_pose_goal.h"
 #include "octomotion/planner/ompl/state_space.h"
 #include "octomotion/planner/ompl/validity_checker.h"
+#include "octomotion/tools/experiment_name.h"
 #include "trade_study_internal.h"
 
 namespace octomotion::trade_study_internal {
@@ -133,8 +134,9 @@ PlanRow runPlanning(const StudyScene& scene, const PlanSetting& setting,
   if (options.overrides.time && !(planner.time > 0)) row.time_limit = *options.overrides.time;
   row.runs = options.runs;
 
-  const std::string experiment =
-      scene.spec.name + " " + settingName(setting.checker, setting.resolution, setting.rounding);
+  // One word: Planner Arena's log import keeps only the last word of the experiment line.
+  const std::string experiment = experimentName(scene.spec.name, checkerKindName(setting.checker),
+                                                setting.resolution, setting.rounding);
   ompl::tools::Benchmark benchmark(ss, experiment);
   const auto timed = std::make_shared<TimedPlanner>(makePlanner(planner.name, si));
   benchmark.addPlanner(timed);

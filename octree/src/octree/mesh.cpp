@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <string>
 #include <unordered_map>
@@ -14,12 +15,15 @@
 #include <assimp/scene.h>
 #include <assimp/Importer.hpp>
 
+#include "internal/collada_check.h"
 #include "internal/mesh.h"
 #include "octomotion/error.h"
 #include "octomotion/input_limits.h"
 
 namespace octomotion {
 namespace {
+
+namespace fs = std::filesystem;
 
 Eigen::Matrix4d toEigen(const aiMatrix4x4& m) {
   Eigen::Matrix4d out;
@@ -140,23 +144,38 @@ void requireIntegerIndexLists(const std::string& text, const std::string& path) 
 
 // assimp's Collada (and other XML) importers recurse once per nested element, so a deeply
 // nested file overflows the stack: XML mesh files are pre-scanned for their nesting depth.
+// assimp takes a file for Collada by its extension or by "<collada" near its start, whatever
+// precedes it (its XML parser skips leading junk), so every such file is validated, and one
+// that does not start with an element is refused rather than left unchecked.
 void requireShallowXml(const std::string& path, std::uintmax_t max_bytes) {
-  char head[64] = {};
+  std::string head(4096, '\0');
   {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw FileError(path, "cannot open mesh file");
-    in.read(head, sizeof head);
+    in.read(&head[0], static_cast<std::streamsize>(head.size()));
+    head.resize(static_cast<std::size_t>(in.gcount()));
   }
+  std::string lower_head = head;
+  for (char& c : lower_head) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  std::string ext = fs::path(path).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (ext == ".zae") {
+    throw FileError(path, "zipped COLLADA (.zae) is not supported: unzip it and load the .dae");
+  }
+  const bool collada = ext == ".dae" || lower_head.find("<collada") != std::string::npos;
   std::size_t i = 0;
-  if (std::strncmp(head, "\xEF\xBB\xBF", 3) == 0) i = 3;  // a UTF-8 byte-order mark
-  while (i < sizeof head && std::isspace(static_cast<unsigned char>(head[i]))) ++i;
-  if (i < sizeof head && head[i] == '<') {
-    const std::string text = readWholeFile(path, "mesh file", max_bytes);
-    requireXmlDepth(text, path);
-    if (text.find("<COLLADA") != std::string::npos) {
-      requireLocalSourcesDefined(text, path);
-      requireIntegerIndexLists(text, path);
-    }
+  if (head.compare(0, 3, "\xEF\xBB\xBF") == 0) i = 3;  // a UTF-8 byte-order mark
+  while (i < head.size() && std::isspace(static_cast<unsigned char>(head[i]))) ++i;
+  if (i >= head.size() || head[i] != '<') {
+    if (collada) throw FileError(path, "a COLLADA file must start with an XML element ('<')");
+    return;
+  }
+  const std::string text = readWholeFile(path, "mesh file", max_bytes);
+  requireXmlDepth(text, path);
+  if (collada || text.find("<COLLADA") != std::string::npos) {
+    requireLocalSourcesDefined(text, path);
+    requireIntegerIndexLists(text, path);
+    detail::validateCollada(text, path);
   }
 }
 
