@@ -41,6 +41,10 @@ class OctreeBackend final : public CollisionBackend {
     return model_->clearanceLowerBound(scratchOf(scratch).check);
   }
   ClearanceBound clearanceBound() const override { return ClearanceBound::kLowerBound; }
+  // OctreeCollisionModel::clearanceLowerBoundGrid: one grid lookup per clearance sphere.
+  double motionClearance(BackendScratch& scratch) const override {
+    return model_->clearanceLowerBoundGrid(scratchOf(scratch).check);
+  }
 
   const RobotModel& robot() const override { return model_->robot(); }
   std::uint64_t id() const override { return model_->id(); }  // scratch depends on the model only
