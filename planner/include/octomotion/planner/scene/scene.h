@@ -66,6 +66,15 @@ inline bool isOctreeChecker(CheckerKind kind) {
   return kind == CheckerKind::kOctree || kind == CheckerKind::kOctreeFused;
 }
 
+// Which OMPL MotionValidator a scene plans with (problem.motion_validator, --motion-validator).
+enum class MotionValidatorKind {
+  kCertified,  // CertifiedMotionValidator (ompl/certified_motion_validator.h), the default
+  kDiscrete,   // OMPL's DiscreteMotionValidator at the step boundMotionStep sets
+};
+const char* motionValidatorKindName(MotionValidatorKind kind);  // "certified", "discrete"
+// The kind a name stands for, or InvalidArgument naming the known ones.
+MotionValidatorKind parseMotionValidatorKind(const std::string& name);
+
 struct OctreeSettings {
   std::optional<double> resolution;       // metres; empty = auto (derived from the scene)
   std::optional<double> link_resolution;  // coarser per-link source trees; empty = resolution
@@ -115,6 +124,7 @@ struct ProblemSpec {
   std::string planner = "RRTConnect";         // an OMPL geometric planner
   double time = 5.0;                          // seconds
   std::optional<std::uint64_t> seed;
+  MotionValidatorKind motion_validator = MotionValidatorKind::kCertified;
 };
 
 struct SceneSpec {
