@@ -6,7 +6,7 @@
 #   scripts/write_benchmarks.sh [--build DIR] [SECTION ...]     (no SECTION: all of them)
 # Sections: differential motion octree builders translate primitive_contact planner_environment
 #           planner_selfcollision planner_clearance pointoctree self_pair_tables check_breakdown
-#           plan_split validity_checker broadphase tradeoff
+#           plan_split validity_checker broadphase world_updates motion_validator tradeoff
 # Environment: OCTOMOTION_DIFFERENTIAL_STATES (default 1000000).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -18,7 +18,7 @@ fi
 out=$root/docs/benchmarks.md
 all=(differential motion octree builders translate primitive_contact planner_environment
   planner_selfcollision planner_clearance pointoctree self_pair_tables check_breakdown plan_split
-  validity_checker broadphase world_updates tradeoff)
+  validity_checker broadphase world_updates motion_validator tradeoff)
 selected=("$@")
 ((${#selected[@]})) || selected=("${all[@]}")
 
@@ -52,6 +52,8 @@ add validity_checker "The OMPL validity checker per scene and checker (planner_v
 add broadphase "N-objects octree broad phase (broadphase_bench)" broadphase_bench ""
 add world_updates "A world that changes between plans, the Panda at 1 cm (planner_world_updates_bench)" \
   planner_world_updates_bench "$gbench"
+add motion_validator "Motion validators on the Panda MotionBenchMaker problems (planner_motion_validator_bench)" \
+  planner_motion_validator_bench "--benchmark_repetitions=3 --benchmark_report_aggregates_only=true"
 add tradeoff "Speed/accuracy trade study (tradeoff_bench; docs/trade-off.md)" tradeoff_bench \
   "--out-dir $build/tradeoff-results"
 
