@@ -2,8 +2,8 @@
 // (robot/motion_bound.h): no point of a link travels farther than its bound along sampled
 // motions (FK, arm with mimic joints and a free-flying body); edges whose midpoint collides are
 // rejected (both overloads, the last valid state proven before the collision); edges it accepts
-// are free for exact FCL at a dense spacing; the scene key picks it by default and the discrete
-// validator on request.
+// are free for exact FCL at a dense spacing; answers agree across threads; the scene key picks it
+// by default and the discrete validator on request.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -12,6 +12,7 @@
 #include <memory>
 #include <random>
 #include <string>
+#include <thread>
 #include <variant>
 #include <vector>
 
@@ -281,6 +282,36 @@ TEST_P(CertifiedMotion, EdgesItAcceptsAreFreeForFclAtADenseSpacing) {
     EXPECT_EQ(edges.fclCollisions(s1.get(), s2.get(), 400), 0u) << "edge " << k;
   }
   EXPECT_GT(accepted, 0);
+}
+
+TEST_P(CertifiedMotion, GivesTheSameAnswersOnSeveralThreads) {
+  SceneEdges edges(GetParam(), 29);
+  const ompl::base::SpaceInformationPtr& si = edges.si();
+  const CertifiedMotionValidator& validator = edges.validator();
+  std::vector<std::unique_ptr<ompl::base::ScopedState<>>> from, to;
+  for (int k = 0; k < 40; ++k) {
+    from.push_back(std::make_unique<ompl::base::ScopedState<>>(si));
+    to.push_back(std::make_unique<ompl::base::ScopedState<>>(si));
+    edges.sampleValid(from.back()->get());
+    edges.sampleValidNear(from.back()->get(), 0.2 * si->getMaximumExtent(), to.back()->get());
+  }
+  auto answers = [&] {
+    std::vector<int> out;
+    for (std::size_t k = 0; k < from.size(); ++k) {
+      std::pair<ompl::base::State*, double> last(nullptr, 0.0);
+      out.push_back(validator.checkMotion(from[k]->get(), to[k]->get()) ? 1 : 0);
+      out.push_back(validator.checkMotion(from[k]->get(), to[k]->get(), last) ? 1 : 0);
+    }
+    return out;
+  };
+  const std::vector<int> expected = answers();
+  EXPECT_GT(std::count(expected.begin(), expected.end(), 1), 0);
+  EXPECT_GT(std::count(expected.begin(), expected.end(), 0), 0);
+  std::vector<std::vector<int>> got(4);
+  std::vector<std::thread> threads;
+  for (auto& g : got) threads.emplace_back([&g, &answers] { g = answers(); });
+  for (auto& t : threads) t.join();
+  for (const auto& g : got) EXPECT_EQ(g, expected);
 }
 
 // The shipped arm scene and a rigid body's (its step was 500 times finer than needed before).
