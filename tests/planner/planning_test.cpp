@@ -31,6 +31,13 @@ TEST_P(Planning, SolvesAndFclFindsThePathFree) {
   overrides.checker = GetParam().checker;
   overrides.time = 60;  // a cap for slow (sanitizer) builds; the planner stops when it solves
   overrides.seed = 7;
+  // The moveTree path re-voxelises each moved link, so a state between two that the certified
+  // validator checked half a voxel apart may touch a voxel it did not (docs/validation.md §4):
+  // the per-state assertion below holds for states the validator checked, which the discrete
+  // validator's interpolation reproduces.
+  if (GetParam().checker == CheckerKind::kOctree) {
+    overrides.motion_validator = MotionValidatorKind::kDiscrete;
+  }
   PlanningScene scene = loadPlanningScene(
       std::string(OCTOMOTION_SOURCE_DIR) + "/robots/scenes/" + GetParam().scene, overrides);
   EXPECT_EQ(scene.checker, GetParam().checker);

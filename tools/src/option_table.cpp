@@ -72,6 +72,11 @@ const OptionTable<SceneOverrides>& sceneOptions() {
        [](const std::string&, const std::string& v, SceneOverrides& o) {
          o.checker = parseCheckerKind(v);
        }},
+      {"--motion-validator", "certified|discrete",
+       "how edges are checked (overrides the scene's; default certified:\ndocs/validation.md §4)",
+       [](const std::string&, const std::string& v, SceneOverrides& o) {
+         o.motion_validator = parseMotionValidatorKind(v);
+       }},
       {"--planner", "NAME", "OMPL planner (overrides the scene's, e.g. RRTConnect)",
        [](const std::string&, const std::string& v, SceneOverrides& o) { o.planner = v; }},
       {"--time", "SECONDS", "planning time limit (overrides the scene's)",

@@ -2,8 +2,11 @@
 // built once by CollisionModelBuilder, and runs the queries on them.
 #include "octomotion/planner/model/collision_model.h"
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
+#include <limits>
 #include <utility>
 
 #include "internal/collision_model_builder.h"
@@ -122,6 +125,33 @@ double OctreeCollisionModel::clearanceLowerBoundPoints(const CheckScratch& scrat
   }
   if (parts_->clearance.empty()) return clearanceLowerBoundTree(scratch);
   return parts_->clearance.lowerBound(parts_->links, scratch.robot);
+}
+
+double OctreeCollisionModel::clearanceLowerBoundGrid(const CheckScratch& scratch) const {
+  const ClearanceGrid* grid = parts_->environment.clearance.get();
+  if (!grid) return 0.0;
+  const WorldGrid& world = parts_->environment.tree.grid();
+  const double voxel = world.voxelSize();
+  double best = std::numeric_limits<double>::infinity();
+  for (const detail::LinkTree& lt : parts_->links.links) {
+    if (!lt.touches_environment) continue;
+    const Eigen::Isometry3d& X_WL = scratch.robot.linkPose(lt.link);
+    for (const Eigen::Vector4d& s : lt.spheres_L) {
+      // The grid bounds the distance from the sphere's centre to every black voxel; the sphere
+      // covers the link's voxels it stands for. A micrometre covers rounding in the transform.
+      const Eigen::Vector3d g = world.toGrid(X_WL * Eigen::Vector3d(s.head<3>()));
+      // Outside the universe (which holds every black voxel) from the nearest point p inside:
+      // |g - b|^2 >= |g - p|^2 + |p - b|^2 for every b in the box.
+      const double side = grid->sideVoxels();
+      const Eigen::Vector3d p = g.cwiseMax(0.0).cwiseMin(side * (1 - 1e-12));
+      const double c[3] = {p.x(), p.y(), p.z()};
+      const double inside = grid->clearance(c);
+      const double voxels = std::sqrt((g - p).squaredNorm() + inside * inside);
+      best = std::min(best, voxels * voxel - s[3] - 1e-6);
+      if (best <= 0) return 0.0;
+    }
+  }
+  return best;  // infinite when no link can reach the environment
 }
 
 double OctreeCollisionModel::clearanceLowerBoundTree(const CheckScratch& scratch) const {

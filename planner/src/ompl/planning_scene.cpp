@@ -186,6 +186,7 @@ SceneInputs loadSceneInputs(const std::string& scene_path, const SceneOverrides&
   if (overrides.rounding) spec.octree.rounding = *overrides.rounding;
   if (overrides.checker) spec.octree.checker = *overrides.checker;
   if (overrides.planner) spec.problem.planner = *overrides.planner;
+  if (overrides.motion_validator) spec.problem.motion_validator = *overrides.motion_validator;
   if (overrides.time) spec.problem.time = *overrides.time;
   if (overrides.seed) spec.problem.seed = *overrides.seed;
   if (overrides.max_surface_voxels) spec.octree.max_surface_voxels = *overrides.max_surface_voxels;
@@ -426,7 +427,9 @@ void setUpOmpl(PlanningScene& scene, bool free_flying, double robot_diagonal, do
       free_flying ? robot_diagonal : scene.model->report().reach_W.sizes().maxCoeff() / 2,
       resolution);
   scene.checker = spec.octree.checker;
-  scene.setup->setStateValidityChecker(makeValidityChecker(si, checkerBackend(scene)));
+  const std::shared_ptr<const CollisionBackend> backend = checkerBackend(scene);
+  scene.setup->setStateValidityChecker(makeValidityChecker(si, backend));
+  installMotionValidator(scene, backend);
   auto toState = [&](const StateSpec& s, const char* field) {
     ob::ScopedState<> state(si);
     if (free_flying) {

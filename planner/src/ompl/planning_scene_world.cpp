@@ -45,7 +45,8 @@ void refresh(PlanningScene& scene) {
     backend = std::make_shared<const OctreeBackend>(scene.model, octreeCheckerPath(scene.checker));
   }
   scene.setup->setStateValidityChecker(makeValidityChecker(si, backend));
-  scene.setup->clear();  // roadmaps and trees were checked against the old world
+  installMotionValidator(scene, backend);  // attached objects change the links' reach
+  scene.setup->clear();                    // roadmaps and trees were checked against the old world
 }
 
 }  // namespace

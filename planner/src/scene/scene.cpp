@@ -429,9 +429,9 @@ StateSpec linkPoseGoalFrom(const YamlReader& r, const YAML::Node& node, const st
 }
 
 void parseProblem(const YamlReader& r, const YAML::Node& node, SceneSpec& scene) {
-  r.allowOnly(
-      node, "problem",
-      {"group", "fixed", "start", "goal", "bounds", "planner", "time", "seed", "moveit_request"});
+  r.allowOnly(node, "problem",
+              {"group", "fixed", "start", "goal", "bounds", "planner", "time", "seed",
+               "moveit_request", "motion_validator"});
   ProblemSpec& p = scene.problem;
   if (node["moveit_request"]) parseMoveItRequestKey(r, node, scene);
   if (node["group"]) p.group = r.string(node["group"], "problem.group");
@@ -453,6 +453,13 @@ void parseProblem(const YamlReader& r, const YAML::Node& node, SceneSpec& scene)
     p.bounds = Eigen::AlignedBox3d(lo, hi);
   }
   if (node["planner"]) p.planner = r.string(node["planner"], "problem.planner");
+  if (const YAML::Node v = node["motion_validator"]) {
+    try {
+      p.motion_validator = parseMotionValidatorKind(r.string(v, "problem.motion_validator"));
+    } catch (const InvalidArgument& e) {
+      r.fail("problem.motion_validator", v, e.what());
+    }
+  }
   if (node["time"]) {
     p.time = r.positive(node["time"], "problem.time");
     if (p.time > kMaxPlanningSeconds) {
@@ -514,6 +521,18 @@ CheckerKind parseCheckerKind(const std::string& name) {
   }
   throw InvalidArgument("checker: expected octree, octree-fused, fcl or fcl-octomap, got '" + name +
                         "'");
+}
+
+const char* motionValidatorKindName(MotionValidatorKind kind) {
+  return kind == MotionValidatorKind::kDiscrete ? "discrete" : "certified";
+}
+
+MotionValidatorKind parseMotionValidatorKind(const std::string& name) {
+  for (MotionValidatorKind kind :
+       {MotionValidatorKind::kCertified, MotionValidatorKind::kDiscrete}) {
+    if (name == motionValidatorKindName(kind)) return kind;
+  }
+  throw InvalidArgument("motion validator: expected certified or discrete, got '" + name + "'");
 }
 
 SceneSpec parseSceneYaml(const std::string& text, const std::string& path) {

@@ -68,6 +68,9 @@ class CollisionBackend {
   // clearanceBound() says (0 in contact).
   virtual double clearance(BackendScratch& scratch) const = 0;
   virtual ClearanceBound clearanceBound() const = 0;
+  // The lower bound the certified motion validator uses (same contract as clearance, in
+  // kLowerBound or kExact terms): clearance() unless the backend has a cheaper bound.
+  virtual double motionClearance(BackendScratch& scratch) const { return clearance(scratch); }
 
   virtual const RobotModel& robot() const = 0;
   // Unique for the process's lifetime (nextModelId), so per-thread scratch can tell which

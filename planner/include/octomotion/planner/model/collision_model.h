@@ -387,6 +387,10 @@ class OctreeCollisionModel {
   // OctoMaps: their voxels). Without kExact: clearanceLowerBound.
   double refinedClearance(const CheckScratch& scratch, double margin) const;
   RefineMode refine() const { return options_.refine; }
+  // A looser, much cheaper bound for certifying motions (CertifiedMotionValidator): the same
+  // spheres against the environment's ClearanceGrid (one lookup each; loose by up to a grid
+  // cell more). Never above clearanceLowerBoundTree's true target, the distance to the voxels.
+  double clearanceLowerBoundGrid(const CheckScratch& scratch) const;
 
   // Read-only view of a modelled link's source tree (in its link frame L), for viewers and
   // exports: moveTree(*source, X_WL, grid(), rounding()) is the link's placement at pose X_WL.

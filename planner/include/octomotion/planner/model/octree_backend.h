@@ -3,6 +3,9 @@
 // OctreeBackend calls the model directly.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
+
 #include <memory>
 
 #include "octomotion/error.h"
@@ -41,6 +44,14 @@ class OctreeBackend final : public CollisionBackend {
     return model_->clearanceLowerBound(scratchOf(scratch).check);
   }
   ClearanceBound clearanceBound() const override { return ClearanceBound::kLowerBound; }
+  // OctreeCollisionModel::clearanceLowerBoundGrid: one grid lookup per clearance sphere. The
+  // moveTree path re-voxelises each moved link on the environment's grid, which conservative
+  // rounding grows by up to a voxel diagonal beyond the spheres: that much less.
+  double motionClearance(BackendScratch& scratch) const override {
+    const double c = model_->clearanceLowerBoundGrid(scratchOf(scratch).check);
+    if (path_ != CheckerPath::kMoveTree) return c;
+    return std::max(0.0, c - std::sqrt(3.0) * model_->grid().voxelSize());
+  }
 
   const RobotModel& robot() const override { return model_->robot(); }
   std::uint64_t id() const override { return model_->id(); }  // scratch depends on the model only

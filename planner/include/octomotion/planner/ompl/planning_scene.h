@@ -31,6 +31,7 @@ struct SceneOverrides {
   std::optional<Rounding> rounding;
   std::optional<CheckerKind> checker;
   std::optional<std::string> planner;
+  std::optional<MotionValidatorKind> motion_validator;  // problem.motion_validator
   std::optional<double> time;
   std::optional<std::uint64_t> seed;
   std::vector<std::string> package_paths;
@@ -131,6 +132,20 @@ CheckerPath octreeCheckerPath(CheckerKind kind);
 // uses it; so should any caller that plans on its own SpaceInformation.
 void boundMotionStep(ompl::base::SpaceInformation& si, const RobotModel& robot, double reach,
                      double resolution);
+
+// The scene's motion validator (problem.motion_validator) on its setup's SpaceInformation, over
+// `backend` (the scene's checker) at the scene's resolution, with the attached objects in the
+// links' motion bound (ompl/certified_motion_validator.h). loadPlanningScene and the world
+// updates call it.
+void installMotionValidator(PlanningScene& scene,
+                            const std::shared_ptr<const CollisionBackend>& backend);
+
+// A SimpleSetup for a scene file in one call: loadPlanningScene's setup — the scene's robot,
+// environment, resolution, checker, planner, start and goal, and motion validator (certified by
+// default). The setup keeps the models it needs alive.
+ompl::geometric::SimpleSetupPtr makeSimpleSetup(const std::string& scene_path,
+                                                const SceneOverrides& overrides = {},
+                                                const WarningSink& warnings = {});
 
 // What loadPlanningScene reads before it builds any model: the scene with the overrides applied
 // (octree.resolution resolved, auto included; problem.bounds set for free-flying bodies), the

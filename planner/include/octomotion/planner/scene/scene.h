@@ -79,6 +79,15 @@ const char* refineModeName(RefineMode mode);
 // The mode a name stands for, or InvalidArgument naming the known ones.
 RefineMode parseRefineMode(const std::string& name);
 
+// Which OMPL MotionValidator a scene plans with (problem.motion_validator, --motion-validator).
+enum class MotionValidatorKind {
+  kCertified,  // CertifiedMotionValidator (ompl/certified_motion_validator.h), the default
+  kDiscrete,   // OMPL's DiscreteMotionValidator at the step boundMotionStep sets
+};
+const char* motionValidatorKindName(MotionValidatorKind kind);  // "certified", "discrete"
+// The kind a name stands for, or InvalidArgument naming the known ones.
+MotionValidatorKind parseMotionValidatorKind(const std::string& name);
+
 struct OctreeSettings {
   std::optional<double> resolution;       // metres; empty = auto (derived from the scene)
   std::optional<double> link_resolution;  // coarser per-link source trees; empty = resolution
@@ -130,6 +139,7 @@ struct ProblemSpec {
   std::string planner = "RRTConnect";         // an OMPL geometric planner
   double time = 5.0;                          // seconds
   std::optional<std::uint64_t> seed;
+  MotionValidatorKind motion_validator = MotionValidatorKind::kCertified;
 };
 
 struct SceneSpec {
