@@ -18,6 +18,7 @@ from ._octomotion import (
     Reason,
     Scene,
     plan,
+    _bench_set,
     _load_scene,
     _trade_study,
 )
@@ -28,6 +29,7 @@ __all__ = [
     "InvalidArgument",
     "Reason",
     "Scene",
+    "bench_set",
     "load_scene",
     "plan",
     "trade_study",
@@ -47,6 +49,8 @@ _SCENE_OPTIONS = {
     "self_link_resolution": "--self-link-resolution",
     "self_pair_tables": "--self-pair-tables",
     "exact_primitives": "--exact-primitives",
+    "refine": "--refine",
+    "motion_validator": "--motion-validator",
 }
 
 # Keyword -> `octomotion bench`'s flag (tools::studyOptions()); lists are comma-separated.
@@ -100,7 +104,8 @@ def load_scene(path, *, require_free_start_goal=False, fit_universe_to_reach=Fal
 
     overrides: the command line's scene options as keywords (resolution=0.02 or "auto",
     rounding, checker, planner, time, seed, package_paths, max_surface_voxels,
-    link_resolution, self_link_resolution, self_pair_tables, exact_primitives).
+    link_resolution, self_link_resolution, self_pair_tables, exact_primitives, refine,
+    motion_validator).
     require_free_start_goal: refuse a scene whose start or goal collides (as `octomotion plan`).
     fit_universe_to_reach: size the octree universe for a world that changes (add_object).
     """
@@ -138,3 +143,43 @@ def trade_study(path, *, states=2000, runs=0, fcl_octomap=True, plan_every_setti
         flags.append(("--plan-every-setting", ""))
     checks, planning = _trade_study(str(path), flags)
     return {"checks": _rows(checks), "planning": _rows(planning)}
+
+
+def bench_set(
+    dir,
+    *,
+    checkers=("octree-fused", "fcl"),
+    robot=None,
+    srdf=None,
+    fixed=None,
+    runs=1,
+    limit=0,
+    recheck_density=100,
+    log_dir=None,
+    **overrides,
+):
+    """The planning benchmark over a folder of problems (`octomotion bench-set`, docs/benchmarking.md).
+
+    dir: scene files, MoveIt scene/request pairs (the MotionBenchMaker layout), or a folder of such
+    sets. Each problem is planned with each checker in turn and every solved path is re-checked
+    with exact FCL at `recheck_density` times the motion step's density. robot/srdf (and `fixed`,
+    {joint: value}) are the robot of MoveIt pairs. overrides: load_scene's keywords (planner,
+    time, seed, resolution, ...). log_dir: where OMPL's benchmark logs are written (none if None).
+    Returns {"runs": [one dict per problem, checker and run], "summary": [one dict per set and
+    checker, then "all"], "logs": [files], "seconds": wall time}.
+    """
+    flags = _flags("bench_set", _SCENE_OPTIONS, overrides)
+    names = [checkers] if isinstance(checkers, str) else list(checkers)
+    csv_text, summary, logs, seconds = _bench_set(
+        str(dir),
+        [str(c) for c in names],
+        "" if robot is None else str(robot),
+        "" if srdf is None else str(srdf),
+        {str(k): float(v) for k, v in (fixed or {}).items()},
+        int(runs),
+        int(limit),
+        float(recheck_density),
+        "" if log_dir is None else str(log_dir),
+        flags,
+    )
+    return {"runs": _rows(csv_text), "summary": list(summary), "logs": list(logs), "seconds": seconds}

@@ -125,3 +125,17 @@ def trade_study(
     plan_every_setting: bool = False,
     **options: Any,
 ) -> Dict[str, List[Dict[str, Any]]]: ...
+
+def bench_set(
+    dir: Union[str, PathLike[str]],
+    *,
+    checkers: Union[str, Sequence[str]] = ("octree-fused", "fcl"),
+    robot: Optional[Union[str, PathLike[str]]] = None,
+    srdf: Optional[Union[str, PathLike[str]]] = None,
+    fixed: Optional[Dict[str, float]] = None,
+    runs: int = 1,
+    limit: int = 0,
+    recheck_density: float = 100,
+    log_dir: Optional[Union[str, PathLike[str]]] = None,
+    **overrides: Any,
+) -> Dict[str, Any]: ...

@@ -7,6 +7,7 @@
 #include <pybind11/stl.h>
 
 #include <cstdint>
+#include <map>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -310,4 +311,41 @@ PYBIND11_MODULE(_octomotion, m) {
         return tradeStudy(path, flags);
       },
       "path"_a, "flags"_a);
+
+  m.def(
+      "_bench_set",
+      [](const std::string& dir, const std::vector<std::string>& checkers, const std::string& robot,
+         const std::string& srdf, const std::map<std::string, double>& fixed, std::size_t runs,
+         std::size_t limit, double recheck_density, const std::string& log_dir,
+         const std::vector<std::pair<std::string, std::string>>& flags) {
+        octomotion::tools::ProblemSetOptions options;
+        options.dir = dir;
+        options.checkers.clear();
+        for (const std::string& name : checkers)
+          options.checkers.push_back(octomotion::parseCheckerKind(name));
+        options.urdf = robot;
+        options.srdf = srdf;
+        options.fixed = fixed;
+        options.runs = runs;
+        options.limit = limit;
+        options.recheck_density = recheck_density;
+        BenchSetResult result;
+        {
+          py::gil_scoped_release release;
+          result = benchSet(std::move(options), flags, log_dir);
+        }
+        py::list summary;
+        for (const octomotion::tools::SetSummary& s : result.summary) {
+          summary.append(py::dict(
+              "set"_a = s.set, "checker"_a = std::string(octomotion::checkerKindName(s.checker)),
+              "resolution"_a = s.resolution, "problems"_a = s.problems, "runs"_a = s.runs,
+              "solved"_a = s.solved, "load_errors"_a = s.load_errors,
+              "median_seconds"_a = s.median_seconds, "p90_seconds"_a = s.p90_seconds,
+              "state_checks"_a = s.state_checks, "motion_checks"_a = s.motion_checks,
+              "recheck_states"_a = s.recheck_states, "recheck_colliding"_a = s.recheck_colliding));
+        }
+        return py::make_tuple(result.runs_csv, summary, result.logs, result.seconds);
+      },
+      "dir"_a, "checkers"_a, "robot"_a, "srdf"_a, "fixed"_a, "runs"_a, "limit"_a,
+      "recheck_density"_a, "log_dir"_a, "flags"_a);
 }

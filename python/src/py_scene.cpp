@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <mutex>
 #include <shared_mutex>
@@ -451,6 +452,48 @@ std::pair<std::string, std::string> tradeStudy(
   writeCheckCsv(result.checks, checks);
   writePlanCsv(result.planning, planning);
   return {checks.str(), planning.str()};
+}
+
+BenchSetResult benchSet(tools::ProblemSetOptions options,
+                        const std::vector<std::pair<std::string, std::string>>& flags,
+                        const std::string& log_dir) {
+  applyFlags(tools::sceneOptions(), flags, options.overrides, "bench_set");
+  if (options.checkers.empty()) throw InvalidArgument("bench_set: checkers: no checker given");
+  if (options.runs == 0) throw InvalidArgument("bench_set: runs: must be at least 1");
+  if (!(options.recheck_density >= 1)) {
+    throw InvalidArgument("bench_set: recheck_density: must be at least 1");
+  }
+  // The pairs' generated scene files live as long as the call.
+  std::string pattern =
+      (std::filesystem::temp_directory_path() / "octomotion-bench-set-XXXXXX").string();
+  if (!mkdtemp(pattern.data())) throw FileError(pattern, "cannot create a temporary folder");
+  struct RemoveOnExit {
+    std::string dir;
+    ~RemoveOnExit() {
+      std::error_code ignored;
+      std::filesystem::remove_all(dir, ignored);
+    }
+  } scene_dir{pattern};
+  options.scene_dir = scene_dir.dir;
+  // Every load sets the seed again, which OMPL reports once sampling has started: the rows say
+  // what happened, as the command's CSV does.
+  const ompl::msg::LogLevel level = ompl::msg::getLogLevel();
+  ompl::msg::setLogLevel(ompl::msg::LOG_NONE);
+  BenchSetResult out;
+  try {
+    const tools::ProblemSetResult result = tools::runProblemSet(options);
+    std::ostringstream csv;
+    tools::writeProblemCsv(result, csv);
+    out.runs_csv = csv.str();
+    out.summary = tools::summarize(result);
+    out.seconds = result.seconds;
+    if (!log_dir.empty()) out.logs = tools::writeOmplLogs(result, options, log_dir);
+  } catch (...) {
+    ompl::msg::setLogLevel(level);
+    throw;
+  }
+  ompl::msg::setLogLevel(level);
+  return out;
 }
 
 }  // namespace octomotion::python

@@ -12,6 +12,7 @@
 #include <Eigen/Geometry>
 
 #include "octomotion/planner/ompl/planning_scene.h"
+#include "octomotion/tools/problem_set.h"
 
 namespace octomotion::python {
 
@@ -99,5 +100,18 @@ class Scene {
 // planning CSV text.
 std::pair<std::string, std::string> tradeStudy(
     const std::string& path, const std::vector<std::pair<std::string, std::string>>& flags);
+
+// The planning benchmark over a folder of problems (tools::runProblemSet, `octomotion bench-set`)
+// with the command's scene options as `flags`. MoveIt pairs' scene files go to a temporary folder
+// removed afterwards; OMPL logs are written to `log_dir` when it is not empty.
+struct BenchSetResult {
+  std::string runs_csv;  // tools::writeProblemCsv
+  std::vector<tools::SetSummary> summary;
+  std::vector<std::string> logs;
+  double seconds = 0;
+};
+BenchSetResult benchSet(tools::ProblemSetOptions options,
+                        const std::vector<std::pair<std::string, std::string>>& flags,
+                        const std::string& log_dir);
 
 }  // namespace octomotion::python

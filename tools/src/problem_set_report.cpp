@@ -17,6 +17,7 @@
 #include <ompl/util/Time.h>
 
 #include "octomotion/error.h"
+#include "octomotion/tools/experiment_name.h"
 #include "octomotion/tools/problem_set.h"
 
 namespace octomotion::tools {
@@ -64,14 +65,6 @@ class SetLog : public ompl::tools::Benchmark {
 };
 
 }  // namespace
-
-std::string experimentName(const std::string& set, CheckerKind checker, double resolution) {
-  std::string name = set + "_" + checkerKindName(checker) + "_" + number(resolution);
-  for (char& c : name) {
-    if (std::isspace(static_cast<unsigned char>(c))) c = '-';
-  }
-  return name;
-}
 
 std::vector<SetSummary> summarize(const ProblemSetResult& result) {
   // Keyed by (set, checker) in order of first appearance; "all" last per checker.
@@ -174,7 +167,7 @@ std::vector<std::string> writeOmplLogs(const ProblemSetResult& result,
     ompl::geometric::SimpleSetup unused(std::make_shared<ompl::base::RealVectorStateSpace>(1));
     SetLog log(unused);
     auto& e = log.experiment();
-    e.name = experimentName(s.set, s.checker, s.resolution);
+    e.name = experimentName(s.set, checkerKindName(s.checker), s.resolution);
     e.maxTime = 0;
     e.maxMem = 0;
     e.runCount = static_cast<unsigned>(s.runs);

@@ -124,7 +124,8 @@ double OctreeCollisionModel::clearanceLowerBoundPoints(const CheckScratch& scrat
     });
   }
   if (parts_->clearance.empty()) return clearanceLowerBoundTree(scratch);
-  return parts_->clearance.lowerBound(parts_->links, scratch.robot);
+  return std::min(parts_->clearance.lowerBound(parts_->links, scratch.robot),
+                  parts_->links.unreachable_clearance);
 }
 
 double OctreeCollisionModel::clearanceLowerBoundGrid(const CheckScratch& scratch) const {
@@ -155,7 +156,9 @@ double OctreeCollisionModel::clearanceLowerBoundGrid(const CheckScratch& scratch
 }
 
 double OctreeCollisionModel::clearanceLowerBoundTree(const CheckScratch& scratch) const {
-  return detail::clearanceLowerBoundTree(parts_->links, parts_->environment.tree, scratch.robot);
+  return std::min(
+      detail::clearanceLowerBoundTree(parts_->links, parts_->environment.tree, scratch.robot),
+      parts_->links.unreachable_clearance);
 }
 
 // Explanations name the objects of the current world (world updates call this again); the data

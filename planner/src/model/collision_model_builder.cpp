@@ -364,6 +364,10 @@ void CollisionModelBuilder::keepLinksThatCanTouch() {
                                        base_region_.max().array() + link_reach_[s]);
     lt.touches_environment = !environment_.tree.empty() && !lt.voxels.source.empty() &&
                              !link_box.intersection(environment_.box_W).isEmpty();
+    if (!lt.touches_environment && !environment_.tree.empty() && !lt.voxels.source.empty()) {
+      links_.unreachable_clearance =
+          std::min(links_.unreachable_clearance, link_box.exteriorDistance(environment_.box_W));
+    }
     if (!lt.touches_environment && !in_pair_[s]) continue;
     links_.link_slot[s] = static_cast<int>(links_.links.size());
     report_.links[s].modelled = true;

@@ -4,6 +4,7 @@
 // the pre-test, the clearance levels and which links are tested against it.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <utility>
 
@@ -163,6 +164,7 @@ void updateEnvironmentTests(detail::CollisionModelParts& parts) {
   for (detail::LinkTree& lt : links.links) {
     lt.touches_environment = any && !lt.voxels.source.empty();
   }
+  links.unreachable_clearance = std::numeric_limits<double>::infinity();  // every link is queried
   std::vector<detail::EnvironmentLinkTest> tests;
   std::vector<bool> listed(links.links.size(), false);
   for (const detail::EnvironmentLinkTest& t : links.environment_tests) {

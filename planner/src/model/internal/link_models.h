@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstddef>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -101,6 +102,10 @@ struct LinkModels {
   std::vector<EnvironmentLinkTest> environment_tests;
   std::vector<const LinkVoxels*> self_voxels;  // per slot: links[slot].forSelf(), one load
   std::vector<int> link_slot;                  // robot link index -> slot, or -1
+  // A lower bound on the environment distance of the links left out of the clearance queries
+  // (those whose reach never meets the environment's box): the gap between the two boxes. The
+  // clearance bounds take the minimum with it, so they stay below the whole robot's distance.
+  double unreachable_clearance = std::numeric_limits<double>::infinity();
 
   // The environment test record of the link in `slot`: its voxels placed on a grid of
   // `environment_voxel` (or, with exact primitives, tested against primitives) reach at most

@@ -90,10 +90,6 @@ struct SetSummary {
 // Sets in order, each followed by the same set over all sets ("all") last.
 std::vector<SetSummary> summarize(const ProblemSetResult& result);
 
-// The experiment name of a set and checker: one word (OMPL's log parser keeps a name's last
-// word), e.g. box_panda_octree-fused_0.01.
-std::string experimentName(const std::string& set, CheckerKind checker, double resolution);
-
 void writeSummaryMarkdown(const std::vector<SetSummary>& summary, std::ostream& out);
 // One row per problem, checker and run.
 void writeProblemCsv(const ProblemSetResult& result, std::ostream& out);
