@@ -88,10 +88,16 @@ double CertifiedMotionValidator::motionBound(const ob::State* s1, const ob::Stat
   return bound_->maxBound(q2.data());
 }
 
+void CertifiedMotionValidator::countMotion(bool free) const {
+  // OMPL's counters are plain members, but checkMotion is const and may run on several threads
+  // (parallel planners), so the increments are atomic.
+  __atomic_fetch_add(free ? &valid_ : &invalid_, 1u, __ATOMIC_RELAXED);
+}
+
 bool CertifiedMotionValidator::checkMotion(const ob::State* s1, const ob::State* s2) const {
   double last_valid = 0.0;
   const bool free = check(s1, s2, false, last_valid);
-  (free ? valid_ : invalid_)++;
+  countMotion(free);
   return free;
 }
 
@@ -99,11 +105,8 @@ bool CertifiedMotionValidator::checkMotion(const ob::State* s1, const ob::State*
                                            std::pair<ob::State*, double>& lastValid) const {
   double last_valid = 0.0;
   const bool free = check(s1, s2, true, last_valid);
-  if (free) {
-    valid_++;
-    return true;
-  }
-  invalid_++;
+  countMotion(free);
+  if (free) return true;
   lastValid.second = last_valid;
   if (lastValid.first) si_->getStateSpace()->interpolate(s1, s2, last_valid, lastValid.first);
   return false;

@@ -61,6 +61,7 @@ class CertifiedMotionValidator : public ompl::base::MotionValidator {
   const CollisionBackend& backend() const { return *backend_; }
 
  private:
+  void countMotion(bool free) const;
   struct Scratch;
   bool check(const ompl::base::State* s1, const ompl::base::State* s2, bool want_last,
              double& last_valid) const;
