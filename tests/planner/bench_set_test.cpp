@@ -16,61 +16,22 @@
 #include <string>
 #include <vector>
 
+#include "cli_run.h"
 #include "mbm_problems.h"
 
 namespace octomotion {
 namespace {
 
 namespace fs = std::filesystem;
+using test::CliRun;
+using test::csvFields;
+using test::lines;
+const auto slurp = test::readText;
+
+test::CliRun runCli(const std::string& args) {
+  return test::runCli(args, "octomotion_bench_set_cli");
+}
 using ::testing::HasSubstr;
-
-struct CliRun {
-  int status;
-  std::string out, err;
-};
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-CliRun runCli(const std::string& args) {
-  const fs::path dir = fs::temp_directory_path() / "octomotion_bench_set_cli";
-  fs::create_directories(dir);
-  const std::string out = (dir / "stdout").string(), err = (dir / "stderr").string();
-  const std::string cmd = std::string(OCTOMOTION_CLI) + " " + args + " >" + out + " 2>" + err;
-  const int raw = std::system(cmd.c_str());
-  return {WEXITSTATUS(raw), slurp(out), slurp(err)};
-}
-
-std::vector<std::string> lines(const std::string& text) {
-  std::vector<std::string> out;
-  std::stringstream s(text);
-  for (std::string l; std::getline(s, l);) out.push_back(l);
-  return out;
-}
-
-// A CSV line's fields (quoted fields may hold commas).
-std::vector<std::string> csvFields(const std::string& line) {
-  std::vector<std::string> fields(1);
-  bool quoted = false;
-  for (std::size_t i = 0; i < line.size(); ++i) {
-    const char c = line[i];
-    if (quoted && c == '"' && i + 1 < line.size() && line[i + 1] == '"') {
-      fields.back() += '"';
-      ++i;
-    } else if (c == '"') {
-      quoted = !quoted;
-    } else if (c == ',' && !quoted) {
-      fields.emplace_back();
-    } else {
-      fields.back() += c;
-    }
-  }
-  return fields;
-}
 
 // A shipped scene with its relative paths made absolute, so it loads from another folder.
 void copyScene(const std::string& name, const fs::path& to) {

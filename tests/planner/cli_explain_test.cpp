@@ -14,43 +14,17 @@
 
 #include <unistd.h>
 
+#include "cli_run.h"
+
 namespace {
 
 namespace fs = std::filesystem;
+using octomotion::test::CliRun;
+using octomotion::test::csvFields;
+using octomotion::test::lines;
+using octomotion::test::runCli;
 using ::testing::HasSubstr;
 using ::testing::Not;
-
-struct CliRun {
-  int status;
-  std::string out, err;
-};
-
-std::vector<std::string> lines(const std::string& text) {
-  std::vector<std::string> out;
-  std::stringstream s(text);
-  for (std::string l; std::getline(s, l);) out.push_back(l);
-  return out;
-}
-
-// One CSV record: fields split at commas outside double quotes, quotes undone.
-std::vector<std::string> csvFields(const std::string& line) {
-  std::vector<std::string> fields(1);
-  bool quoted = false;
-  for (std::size_t i = 0; i < line.size(); ++i) {
-    const char c = line[i];
-    if (quoted && c == '"' && i + 1 < line.size() && line[i + 1] == '"') {
-      fields.back() += '"';
-      ++i;
-    } else if (c == '"') {
-      quoted = !quoted;
-    } else if (c == ',' && !quoted) {
-      fields.emplace_back();
-    } else {
-      fields.back() += c;
-    }
-  }
-  return fields;
-}
 
 class CliExplain : public ::testing::Test {
  protected:
@@ -86,18 +60,7 @@ class CliExplain : public ::testing::Test {
     return write(name, s.str());
   }
 
-  CliRun run(const std::string& args) const {
-    const std::string out = (dir_ / "stdout").string(), err = (dir_ / "stderr").string();
-    const int raw =
-        std::system((std::string(OCTOMOTION_CLI) + " " + args + " >" + out + " 2>" + err).c_str());
-    auto slurp = [](const std::string& p) {
-      std::ifstream in(p);
-      std::stringstream s;
-      s << in.rdbuf();
-      return s.str();
-    };
-    return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(out), slurp(err)};
-  }
+  CliRun run(const std::string& args) const { return runCli(args, "octomotion_cli_explain_run"); }
 
   fs::path dir_;
 };

@@ -9,41 +9,22 @@
 #include <fstream>
 #include <sstream>
 
+#include "cli_run.h"
+
 namespace {
 
 namespace fs = std::filesystem;
+using octomotion::test::CliRun;
+using octomotion::test::lines;
 using ::testing::HasSubstr;
 using ::testing::Not;
 
-struct CliRun {
-  int status;
-  std::string out, err;
-};
-
 CliRun run(const std::string& args) {
-  const fs::path dir = fs::temp_directory_path() / "octomotion_cli_test";
-  fs::create_directories(dir);
-  const std::string out = (dir / "stdout").string(), err = (dir / "stderr").string();
-  const std::string cmd = std::string(OCTOMOTION_CLI) + " " + args + " >" + out + " 2>" + err;
-  const int raw = std::system(cmd.c_str());
-  auto slurp = [](const std::string& p) {
-    std::ifstream in(p);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-  };
-  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(out), slurp(err)};
+  return octomotion::test::runCli(args, "octomotion_cli_test");
 }
 
 std::string scene(const char* name) {
   return std::string(OCTOMOTION_SOURCE_DIR) + "/robots/scenes/" + name;
-}
-
-std::vector<std::string> lines(const std::string& text) {
-  std::vector<std::string> out;
-  std::stringstream s(text);
-  for (std::string l; std::getline(s, l);) out.push_back(l);
-  return out;
 }
 
 TEST(Cli, InfoDescribesWhatIsModelled) {

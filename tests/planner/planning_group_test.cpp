@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "cli_run.h"
 #include "joint_states.h"
 #include "octomotion/error.h"
 #include "octomotion/planner/robot/held_joints.h"
@@ -441,25 +442,10 @@ TEST(PlanningGroupScene, ParsingKeepsNamesAndRejectsBadValues) {
 
 // --- The command line ---
 
-struct CliRun {
-  int status;
-  std::string out, err;
-};
+using test::CliRun;
 
 CliRun runCli(const std::string& args) {
-  const std::filesystem::path dir =
-      std::filesystem::temp_directory_path() / "octomotion_planning_group_test";
-  std::filesystem::create_directories(dir);
-  const std::string out = (dir / "stdout").string(), err = (dir / "stderr").string();
-  const int raw =
-      std::system((std::string(OCTOMOTION_CLI) + " " + args + " >" + out + " 2>" + err).c_str());
-  auto slurp = [](const std::string& p) {
-    std::ifstream in(p);
-    std::stringstream text;
-    text << in.rdbuf();
-    return text.str();
-  };
-  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(out), slurp(err)};
+  return test::runCli(args, "octomotion_planning_group_test");
 }
 
 TEST(PlanningGroupCli, InfoPlanAndCheckUseThePlannedJoints) {
