@@ -1,0 +1,107 @@
+// A large free-flying body in a building-sized mesh scene (tools/building_scene.h,
+// docs/scenes.md "Large rigid scenes"): the generated scene is deterministic and refuses
+// options that give no building; its start and goal are free and not joined by a straight
+// motion; RRTConnect with the scene's defaults (octree checker, certified motion validator,
+// fixed seed) plans it, and exact FCL finds every state of the path free at 100 times its
+// state density.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include <ompl/base/goals/GoalState.h>
+#include <ompl/util/Console.h>
+#include <Eigen/Geometry>
+
+#include "octomotion/error.h"
+#include "octomotion/planner/ompl/certified_motion_validator.h"
+#include "octomotion/planner/ompl/planning_scene.h"
+#include "octomotion/planner/ompl/state_space.h"
+#include "octomotion/tools/building_scene.h"
+
+namespace octomotion {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string folder(const std::string& name) {
+  const fs::path dir = fs::path(::testing::TempDir()) / ("octomotion_large_rigid_" + name);
+  fs::remove_all(dir);
+  return dir.string();
+}
+
+std::string contents(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+TEST(BuildingScene, TheSameSeedWritesTheSameFilesAndAnotherSeedOtherDoors) {
+  const std::string a = folder("a"), b = folder("b"), c = folder("c");
+  tools::writeBuildingScene(a);
+  tools::writeBuildingScene(b);
+  tools::BuildingOptions other;
+  other.seed = 2;
+  tools::writeBuildingScene(c, other);
+  for (const char* file : {"building.yaml", "building.stl", "l_body.stl"}) {
+    EXPECT_EQ(contents(a + "/" + file), contents(b + "/" + file)) << file;
+  }
+  EXPECT_NE(contents(a + "/building.stl"), contents(c + "/building.stl"));
+  // Binary STL: an 80-byte header, a count, 50 bytes a triangle; 12 triangles a box.
+  const std::string body = contents(a + "/l_body.stl");
+  EXPECT_EQ(body.size(), 84u + 2 * 12 * 50);
+}
+
+TEST(BuildingScene, OptionsThatGiveNoBuildingAreRefused) {
+  auto refused = [](auto change) {
+    tools::BuildingOptions o;
+    change(o);
+    EXPECT_THROW(tools::writeBuildingScene(folder("refused"), o), InvalidArgument);
+  };
+  refused([](tools::BuildingOptions& o) { o.rooms_x = o.rooms_y = 1; });
+  refused([](tools::BuildingOptions& o) { o.door_width = o.room_size; });
+  refused([](tools::BuildingOptions& o) { o.door_height = o.wall_height; });
+  refused([](tools::BuildingOptions& o) { o.body_short_leg = o.door_height; });
+  refused([](tools::BuildingOptions& o) { o.room_size = -1; });
+}
+
+TEST(LargeRigid, TheGeneratedBuildingIsPlannedAndFclFindsThePathFree) {
+  ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
+  const std::string scene_path = tools::writeBuildingScene(folder("plan"));
+  SceneOverrides overrides;
+  overrides.time = 120;  // a cap for sanitizer builds; RRTConnect stops when it solves
+  overrides.seed = 1;
+  PlanningScene scene = loadPlanningScene(scene_path, overrides);
+  const ompl::base::SpaceInformationPtr& si = scene.setup->getSpaceInformation();
+  ASSERT_TRUE(dynamic_cast<const CertifiedMotionValidator*>(si->getMotionValidator().get()));
+  const auto& pdef = scene.setup->getProblemDefinition();
+  ASSERT_EQ(pdef->getStartStateCount(), 1u);
+  const auto* goal = pdef->getGoal()->as<ompl::base::GoalState>();
+  ASSERT_TRUE(goal);
+  // Free ends, but walls between them: the problem is not one straight motion.
+  EXPECT_TRUE(si->isValid(pdef->getStartState(0)));
+  EXPECT_TRUE(si->isValid(goal->getState()));
+  EXPECT_FALSE(si->checkMotion(pdef->getStartState(0), goal->getState()));
+
+  const PlanResult result = plan(scene);
+  ASSERT_TRUE(result.solved);
+  ompl::geometric::PathGeometric dense(*result.path);
+  dense.interpolate(static_cast<unsigned>(100 * (result.path->getStateCount() - 1) + 1));
+  const FclCollisionModel& fcl = *scene.fclModel();
+  auto scratch = fcl.makeScratch();
+  std::vector<double> q;
+  Eigen::Isometry3d X_WB = Eigen::Isometry3d::Identity();
+  std::size_t colliding = 0;
+  for (std::size_t i = 0; i < dense.getStateCount(); ++i) {
+    ASSERT_TRUE(
+        stateToConfiguration(fcl.robot(), dense.getState(static_cast<unsigned>(i)), q, X_WB));
+    fcl.setConfiguration(q.data(), q.size(), X_WB, *scratch);
+    colliding += fcl.inCollision(*scratch) ? 1 : 0;
+  }
+  EXPECT_EQ(colliding, 0u) << "of " << dense.getStateCount() << " states";
+}
+
+}  // namespace
+}  // namespace octomotion
