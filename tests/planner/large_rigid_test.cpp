@@ -1,18 +1,21 @@
 // A large free-flying body in a building-sized mesh scene (tools/building_scene.h,
 // docs/scenes.md "Large rigid scenes"): the generated scene is deterministic and refuses
 // options that give no building; its start and goal are free and not joined by a straight
-// motion; RRTConnect with the scene's defaults (octree checker, certified motion validator,
-// fixed seed) plans it, and exact FCL finds every state of the path free at 100 times its
-// state density.
+// motion; the ompl-default validator keeps OMPL's own step; RRTConnect with the scene's defaults
+// (octree checker, certified motion validator, fixed seed) plans it, and exact FCL finds every
+// state of the path free at 100 times its state density.
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include <ompl/base/DiscreteMotionValidator.h>
 #include <ompl/base/goals/GoalState.h>
+#include <ompl/base/spaces/SE3StateSpace.h>
 #include <ompl/util/Console.h>
 #include <Eigen/Geometry>
 
@@ -65,6 +68,29 @@ TEST(BuildingScene, OptionsThatGiveNoBuildingAreRefused) {
   refused([](tools::BuildingOptions& o) { o.door_height = o.wall_height; });
   refused([](tools::BuildingOptions& o) { o.body_short_leg = o.door_height; });
   refused([](tools::BuildingOptions& o) { o.room_size = -1; });
+}
+
+// The OMPL.app baseline: OMPL's discrete validator at OMPL's own step (its default fraction of
+// the space's extent), where `discrete` sets a finer one from the voxels.
+TEST(LargeRigid, TheOmplDefaultValidatorKeepsOmplsOwnStep) {
+  EXPECT_EQ(parseMotionValidatorKind("ompl-default"), MotionValidatorKind::kOmplDefault);
+  EXPECT_STREQ(motionValidatorKindName(MotionValidatorKind::kOmplDefault), "ompl-default");
+  const std::string scene_path =
+      std::string(OCTOMOTION_SOURCE_DIR) + "/robots/scenes/narrow_passage.yaml";
+  const double ompl_default =
+      ompl::base::SpaceInformation(std::make_shared<ompl::base::SE3StateSpace>())
+          .getStateValidityCheckingResolution();
+  SceneOverrides overrides;
+  overrides.motion_validator = MotionValidatorKind::kOmplDefault;
+  PlanningScene baseline = loadPlanningScene(scene_path, overrides);
+  const auto& si = baseline.setup->getSpaceInformation();
+  EXPECT_TRUE(
+      dynamic_cast<const ompl::base::DiscreteMotionValidator*>(si->getMotionValidator().get()));
+  EXPECT_EQ(si->getStateValidityCheckingResolution(), ompl_default);
+  overrides.motion_validator = MotionValidatorKind::kDiscrete;
+  PlanningScene discrete = loadPlanningScene(scene_path, overrides);
+  EXPECT_LT(discrete.setup->getSpaceInformation()->getStateValidityCheckingResolution(),
+            ompl_default);
 }
 
 TEST(LargeRigid, TheGeneratedBuildingIsPlannedAndFclFindsThePathFree) {
