@@ -10,16 +10,19 @@
 #include <fstream>
 #include <iterator>
 #include <memory>
+#include <random>
 #include <string>
 #include <vector>
 
 #include <ompl/base/DiscreteMotionValidator.h>
+#include <ompl/base/ScopedState.h>
 #include <ompl/base/goals/GoalState.h>
 #include <ompl/base/spaces/SE3StateSpace.h>
 #include <ompl/util/Console.h>
 #include <Eigen/Geometry>
 
 #include "octomotion/error.h"
+#include "octomotion/planner/model/collision_backend.h"
 #include "octomotion/planner/ompl/certified_motion_validator.h"
 #include "octomotion/planner/ompl/planning_scene.h"
 #include "octomotion/planner/ompl/state_space.h"
@@ -91,6 +94,45 @@ TEST(LargeRigid, TheOmplDefaultValidatorKeepsOmplsOwnStep) {
   PlanningScene discrete = loadPlanningScene(scene_path, overrides);
   EXPECT_LT(discrete.setup->getSpaceInformation()->getStateValidityCheckingResolution(),
             ompl_default);
+}
+
+// The certified validator's clearance for the octree (the grid's, read through groups of
+// clearance spheres) never exceeds the exact distance, at random poses of the shipped rigid
+// bodies and of the generated building's large one.
+TEST(LargeRigid, TheMotionClearanceIsALowerBoundOnTheExactDistance) {
+  ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
+  const std::string scenes = std::string(OCTOMOTION_SOURCE_DIR) + "/robots/scenes/";
+  for (const std::string& path : {scenes + "narrow_passage.yaml", scenes + "rooms.yaml",
+                                  tools::writeBuildingScene(folder("clearance"))}) {
+    SCOPED_TRACE(path);
+    PlanningScene scene = loadPlanningScene(path);
+    const std::shared_ptr<const CollisionBackend> octree = checkerBackend(scene);
+    const FclCollisionModel& fcl = *scene.fclModel();
+    auto octree_scratch = octree->makeBackendScratch();
+    auto fcl_scratch = fcl.makeScratch();
+    const Eigen::AlignedBox3d bounds = *scene.spec.problem.bounds;
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    std::normal_distribution<double> normal;
+    int free = 0, positive = 0;
+    for (int i = 0; i < 1500; ++i) {
+      Eigen::Isometry3d X_WB = Eigen::Isometry3d::Identity();
+      for (int a = 0; a < 3; ++a) {
+        X_WB.translation()[a] = bounds.min()[a] + unit(rng) * bounds.sizes()[a];
+      }
+      Eigen::Quaterniond r(normal(rng), normal(rng), normal(rng), normal(rng));
+      X_WB.linear() = r.normalized().toRotationMatrix();
+      if (octree->inCollision(nullptr, 0, X_WB, *octree_scratch)) continue;
+      ++free;
+      const double bound = octree->motionClearance(*octree_scratch);
+      fcl.setConfiguration(nullptr, 0, X_WB, *fcl_scratch);
+      const double exact = fcl.environmentDistance(*fcl_scratch);
+      EXPECT_LE(bound, exact + 1e-5) << "state " << i;
+      positive += bound > 0 ? 1 : 0;
+    }
+    EXPECT_GT(free, 100);
+    EXPECT_GT(positive, 0);  // the bound is not trivially 0
+  }
 }
 
 TEST(LargeRigid, TheGeneratedBuildingIsPlannedAndFclFindsThePathFree) {
