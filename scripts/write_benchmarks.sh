@@ -7,7 +7,7 @@
 # Sections: differential motion octree builders translate primitive_contact planner_environment
 #           planner_selfcollision planner_clearance pointoctree self_pair_tables check_breakdown
 #           plan_split validity_checker broadphase world_updates refine motion_validator
-#           tradeoff python_check_many bench_set_mbm
+#           tradeoff python_check_many bench_set_mbm bench_set_rigid
 # Environment: OCTOMOTION_DIFFERENTIAL_STATES (default 1000000).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -20,7 +20,7 @@ out=$root/docs/benchmarks.md
 all=(differential motion octree builders translate primitive_contact planner_environment
   planner_selfcollision planner_clearance pointoctree self_pair_tables check_breakdown plan_split
   validity_checker broadphase world_updates refine motion_validator tradeoff python_check_many
-  bench_set_mbm)
+  bench_set_mbm bench_set_rigid)
 selected=("$@")
 ((${#selected[@]})) || selected=("${all[@]}")
 
@@ -62,6 +62,8 @@ add tradeoff "Speed/accuracy trade study (tradeoff_bench; docs/trade-off.md)" tr
   "--out-dir $build/tradeoff-results"
 add bench_set_mbm "Planning on the MotionBenchMaker Panda problems (octomotion bench-set)" \
   octomotion ""
+add bench_set_rigid "Planning rigid bodies, a generated building included (octomotion bench-set)" \
+  octomotion ""
 
 # A Python bench: its target is the extension, its program a script run by the module's interpreter.
 add python_check_many "Python check_many against the C++ per-state time (python_check_many_bench.py)" \
@@ -84,9 +86,9 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 for s in "${selected[@]}"; do
   [[ -n ${title[$s]:-} ]] || { echo "unknown section $s (one of: ${all[*]})" >&2; exit 2; }
-  if [[ $s == bench_set_mbm ]]; then  # a command over a data set, not a bench program
+  if [[ $s == bench_set_* ]]; then  # a command over a problem set, not a bench program
     echo "write_benchmarks: $s" >&2
-    "$root/scripts/bench_set_mbm.sh" "$build" "$tmp/$s.body"
+    "$root/scripts/$s.sh" "$build" "$tmp/$s.body"
     printf '<!-- section %s -->\n## %s\n\n%s\n\n' "$s" "${title[$s]}" "$stamp" >"$tmp/$s.md"
     cat "$tmp/$s.body" >>"$tmp/$s.md"
     echo "<!-- end $s -->" >>"$tmp/$s.md"

@@ -33,5 +33,7 @@ int benchCommand(const std::vector<std::string>& args);
 int benchSetCommand(const std::vector<std::string>& args);
 // `octomotion view SCENE ...`: writes the glTF file and the viewer page.
 int viewCommand(const std::vector<std::string>& args);
+// `octomotion make-building DIR ...`: writes the generated building scene.
+int makeBuildingCommand(const std::vector<std::string>& args);
 
 }  // namespace octomotion::cli

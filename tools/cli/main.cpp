@@ -33,6 +33,7 @@ const char* kUsage = R"(usage:
   octomotion bench SCENE [bench options] [options]   (octomotion bench --help)
   octomotion bench-set DIR [bench-set options] [options]   (octomotion bench-set --help)
   octomotion view SCENE [--path PATH] [view options] [options]   (octomotion view --help)
+  octomotion make-building DIR [options]   (octomotion make-building --help)
 SCENE is a YAML scene (docs/scenes.md) or an OMPL.app .cfg problem.
 options:
 )";
@@ -298,6 +299,9 @@ int main(int argc, char** argv) {
     // Commands with options of their own parse their arguments themselves.
     if (argc >= 2 && std::string(argv[1]) == "bench-set") {
       return cli::finishStdout(cli::benchSetCommand({argv + 2, argv + argc}));
+    }
+    if (argc >= 2 && std::string(argv[1]) == "make-building") {
+      return cli::finishStdout(cli::makeBuildingCommand({argv + 2, argv + argc}));
     }
     if (argc >= 2 && (std::string(argv[1]) == "bench" || std::string(argv[1]) == "view")) {
       ompl::msg::setLogLevel(ompl::msg::LOG_WARN);

@@ -72,7 +72,7 @@ const OptionTable<SceneOverrides>& sceneOptions() {
        [](const std::string&, const std::string& v, SceneOverrides& o) {
          o.checker = parseCheckerKind(v);
        }},
-      {"--motion-validator", "certified|discrete",
+      {"--motion-validator", "certified|discrete|ompl-default",
        "how edges are checked (overrides the scene's; default certified:\ndocs/validation.md §4)",
        [](const std::string&, const std::string& v, SceneOverrides& o) {
          o.motion_validator = parseMotionValidatorKind(v);

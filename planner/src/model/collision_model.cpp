@@ -137,9 +137,9 @@ double OctreeCollisionModel::clearanceLowerBoundGrid(const CheckScratch& scratch
   for (const detail::LinkTree& lt : parts_->links.links) {
     if (!lt.touches_environment) continue;
     const Eigen::Isometry3d& X_WL = scratch.robot.linkPose(lt.link);
-    for (const Eigen::Vector4d& s : lt.spheres_L) {
-      // The grid bounds the distance from the sphere's centre to every black voxel; the sphere
-      // covers the link's voxels it stands for. A micrometre covers rounding in the transform.
+    // The grid bounds the distance from the sphere's centre to every black voxel; the sphere
+    // covers the link's voxels it stands for. A micrometre covers rounding in the transform.
+    auto sphereClearance = [&](const Eigen::Vector4d& s) {
       const Eigen::Vector3d g = world.toGrid(X_WL * Eigen::Vector3d(s.head<3>()));
       // Outside the universe (which holds every black voxel) from the nearest point p inside:
       // |g - b|^2 >= |g - p|^2 + |p - b|^2 for every b in the box.
@@ -148,7 +148,18 @@ double OctreeCollisionModel::clearanceLowerBoundGrid(const CheckScratch& scratch
       const double c[3] = {p.x(), p.y(), p.z()};
       const double inside = grid->clearance(c);
       const double voxels = std::sqrt((g - p).squaredNorm() + inside * inside);
-      best = std::min(best, voxels * voxel - s[3] - 1e-6);
+      return voxels * voxel - s[3] - 1e-6;
+    };
+    for (const detail::SphereGroup& group : lt.sphere_groups_L) {
+      // The group's sphere holds its members: its bound is theirs too, and when it is no
+      // lower than the best so far, they cannot lower it.
+      const double outer = sphereClearance(group.sphere_L);
+      if (outer >= best) continue;
+      double members = std::numeric_limits<double>::infinity();
+      for (std::size_t i = group.begin; i < group.end && members > outer; ++i) {
+        members = std::min(members, sphereClearance(lt.spheres_L[i]));
+      }
+      best = std::min(best, std::max(outer, members));
       if (best <= 0) return 0.0;
     }
   }

@@ -246,6 +246,7 @@ void CollisionModelBuilder::voxelizeLinks() {
     }
     const Octree& source = lt.voxels.source;
     lt.spheres_L = clearanceSpheres(source);
+    lt.sphere_groups_L = groupClearanceSpheres(lt.spheres_L);
     lr.source_internal_nodes = source.internalNodeCount();
     lr.source_black_leaves = source.blackLeafCount();
     lr.source_bytes = source.bytes();

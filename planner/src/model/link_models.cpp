@@ -117,6 +117,44 @@ std::vector<Eigen::Vector4d> clearanceSpheres(const Octree& source) {
   return spheres;
 }
 
+std::vector<SphereGroup> groupClearanceSpheres(std::vector<Eigen::Vector4d>& spheres) {
+  std::vector<SphereGroup> groups;
+  if (spheres.empty()) return groups;
+  // Cells of four of the smallest spheres' cubes (side = diameter / sqrt 3) from the lowest corner.
+  double smallest = spheres.front()[3];
+  Eigen::Vector3d low = spheres.front().head<3>();
+  for (const Eigen::Vector4d& s : spheres) {
+    smallest = std::min(smallest, s[3]);
+    low = low.cwiseMin(s.head<3>());
+  }
+  const double cell = 4 * 2 * smallest / std::sqrt(3.0);
+  auto key = [&](const Eigen::Vector4d& s) {
+    const Eigen::Vector3d k = ((s.head<3>() - low) / cell).array().floor();
+    return std::make_tuple(k.z(), k.y(), k.x());
+  };
+  std::stable_sort(
+      spheres.begin(), spheres.end(),
+      [&](const Eigen::Vector4d& a, const Eigen::Vector4d& b) { return key(a) < key(b); });
+  for (std::size_t begin = 0; begin < spheres.size();) {
+    std::size_t end = begin + 1;
+    while (end < spheres.size() && key(spheres[end]) == key(spheres[begin])) ++end;
+    Eigen::AlignedBox3d box;
+    for (std::size_t i = begin; i < end; ++i) box.extend(spheres[i].head<3>());
+    SphereGroup g;
+    g.sphere_L.head<3>() = box.center();
+    g.sphere_L[3] = 0;
+    for (std::size_t i = begin; i < end; ++i) {
+      g.sphere_L[3] =
+          std::max(g.sphere_L[3], (spheres[i].head<3>() - box.center()).norm() + spheres[i][3]);
+    }
+    g.begin = begin;
+    g.end = end;
+    groups.push_back(g);
+    begin = end;
+  }
+  return groups;
+}
+
 EnvironmentLinkTest LinkModels::environmentTest(std::size_t slot, double environment_voxel,
                                                 bool exact_primitives) const {
   const LinkVoxels& v = links[slot].voxels;

@@ -31,7 +31,7 @@ std::shared_ptr<const LinkMotionBound> makeLinkMotionBound(
 void setMotionValidator(const ompl::base::SpaceInformationPtr& si, MotionValidatorKind kind,
                         std::shared_ptr<const CollisionBackend> backend,
                         std::shared_ptr<const LinkMotionBound> bound, double resolution) {
-  if (kind == MotionValidatorKind::kDiscrete) {
+  if (kind != MotionValidatorKind::kCertified) {
     si->setMotionValidator(std::make_shared<ompl::base::DiscreteMotionValidator>(si));
     return;
   }

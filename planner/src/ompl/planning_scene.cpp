@@ -422,10 +422,13 @@ void setUpOmpl(PlanningScene& scene, bool free_flying, double robot_diagonal, do
   const Eigen::AlignedBox3d* bounds = free_flying ? &*spec.problem.bounds : nullptr;
   scene.setup = std::make_shared<og::SimpleSetup>(makeStateSpace(model_robot, bounds));
   const ob::SpaceInformationPtr& si = scene.setup->getSpaceInformation();
-  boundMotionStep(
-      *si, model_robot,
-      free_flying ? robot_diagonal : scene.model->report().reach_W.sizes().maxCoeff() / 2,
-      resolution);
+  // ompl-default keeps OMPL's own step, the baseline it stands for.
+  if (spec.problem.motion_validator != MotionValidatorKind::kOmplDefault) {
+    boundMotionStep(
+        *si, model_robot,
+        free_flying ? robot_diagonal : scene.model->report().reach_W.sizes().maxCoeff() / 2,
+        resolution);
+  }
   scene.checker = spec.octree.checker;
   const std::shared_ptr<const CollisionBackend> backend = checkerBackend(scene);
   scene.setup->setStateValidityChecker(makeValidityChecker(si, backend));

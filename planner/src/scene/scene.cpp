@@ -524,15 +524,25 @@ CheckerKind parseCheckerKind(const std::string& name) {
 }
 
 const char* motionValidatorKindName(MotionValidatorKind kind) {
-  return kind == MotionValidatorKind::kDiscrete ? "discrete" : "certified";
+  switch (kind) {
+    case MotionValidatorKind::kDiscrete:
+      return "discrete";
+    case MotionValidatorKind::kOmplDefault:
+      return "ompl-default";
+    case MotionValidatorKind::kCertified:
+      break;
+  }
+  return "certified";
 }
 
 MotionValidatorKind parseMotionValidatorKind(const std::string& name) {
-  for (MotionValidatorKind kind :
-       {MotionValidatorKind::kCertified, MotionValidatorKind::kDiscrete}) {
+  for (MotionValidatorKind kind : {MotionValidatorKind::kCertified, MotionValidatorKind::kDiscrete,
+                                   MotionValidatorKind::kOmplDefault}) {
     if (name == motionValidatorKindName(kind)) return kind;
   }
-  throw InvalidArgument("motion validator: expected certified or discrete, got '" + name + "'");
+  throw InvalidArgument(
+      "motion validator: expected certified or discrete (or ompl-default, a baseline), got '" +
+      name + "'");
 }
 
 SceneSpec parseSceneYaml(const std::string& text, const std::string& path) {

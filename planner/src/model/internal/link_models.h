@@ -53,6 +53,16 @@ LinkVoxels voxelizeLink(const Link& link, const std::vector<const TriangleMesh*>
 // Clearance spheres of a link: they circumscribe the coarse ancestors of its black leaves.
 std::vector<Eigen::Vector4d> clearanceSpheres(const Octree& source);
 
+// A sphere holding the clearance spheres [begin, end) of a link: a grid clearance at its centre,
+// less its radius, bounds theirs from below, so a group whose bound is no lower than the best
+// so far is skipped without looking at its members (a large body has thousands of spheres).
+struct SphereGroup {
+  Eigen::Vector4d sphere_L;  // centre, radius
+  std::size_t begin = 0, end = 0;
+};
+// Sorts `spheres` into groups of neighbours (about 4 x 4 x 4 of the smallest) and returns them.
+std::vector<SphereGroup> groupClearanceSpheres(std::vector<Eigen::Vector4d>& spheres);
+
 struct LinkTree {
   int link = -1;
   LinkVoxels voxels;  // tested against the environment (and the other links, unless below)
@@ -63,7 +73,8 @@ struct LinkTree {
   const LinkVoxels& forSelf() const { return self_voxels ? *self_voxels : voxels; }
   bool touches_environment = true;  // false: cannot reach the modelled environment
   bool folded = false;  // its pose is constant: tested against the environment at build time
-  std::vector<Eigen::Vector4d> spheres_L;  // coarse cover of the black voxels (clearance)
+  std::vector<Eigen::Vector4d> spheres_L;    // coarse cover of the black voxels (clearance)
+  std::vector<SphereGroup> sphere_groups_L;  // spheres_L in groups (groupClearanceSpheres)
 };
 
 // What the environment pre-test reads of a link, in one flat record per link that can touch

@@ -83,8 +83,12 @@ RefineMode parseRefineMode(const std::string& name);
 enum class MotionValidatorKind {
   kCertified,  // CertifiedMotionValidator (ompl/certified_motion_validator.h), the default
   kDiscrete,   // OMPL's DiscreteMotionValidator at the step boundMotionStep sets
+  // OMPL's DiscreteMotionValidator at OMPL's own default step (1 % of the state space's extent),
+  // as OMPL.app plans: a baseline for comparisons, neither a proof nor bounded by the voxels.
+  kOmplDefault,
 };
-const char* motionValidatorKindName(MotionValidatorKind kind);  // "certified", "discrete"
+// "certified", "discrete", "ompl-default"
+const char* motionValidatorKindName(MotionValidatorKind kind);
 // The kind a name stands for, or InvalidArgument naming the known ones.
 MotionValidatorKind parseMotionValidatorKind(const std::string& name);
 

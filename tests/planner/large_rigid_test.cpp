@@ -1,0 +1,175 @@
+// A large free-flying body in a building-sized mesh scene (tools/building_scene.h,
+// docs/scenes.md "Large rigid scenes"): the generated scene is deterministic and refuses
+// options that give no building; its start and goal are free and not joined by a straight
+// motion; the ompl-default validator keeps OMPL's own step; RRTConnect with the scene's defaults
+// (octree checker, certified motion validator, fixed seed) plans it, and exact FCL finds every
+// state of the path free at 100 times its state density.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <memory>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <ompl/base/DiscreteMotionValidator.h>
+#include <ompl/base/ScopedState.h>
+#include <ompl/base/goals/GoalState.h>
+#include <ompl/base/spaces/SE3StateSpace.h>
+#include <ompl/util/Console.h>
+#include <Eigen/Geometry>
+
+#include "octomotion/error.h"
+#include "octomotion/planner/model/collision_backend.h"
+#include "octomotion/planner/ompl/certified_motion_validator.h"
+#include "octomotion/planner/ompl/planning_scene.h"
+#include "octomotion/planner/ompl/state_space.h"
+#include "octomotion/tools/building_scene.h"
+
+namespace octomotion {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string folder(const std::string& name) {
+  const fs::path dir = fs::path(::testing::TempDir()) / ("octomotion_large_rigid_" + name);
+  fs::remove_all(dir);
+  return dir.string();
+}
+
+std::string contents(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+TEST(BuildingScene, TheSameSeedWritesTheSameFilesAndAnotherSeedOtherDoors) {
+  const std::string a = folder("a"), b = folder("b"), c = folder("c");
+  tools::writeBuildingScene(a);
+  tools::writeBuildingScene(b);
+  tools::BuildingOptions other;
+  other.seed = 2;
+  tools::writeBuildingScene(c, other);
+  for (const char* file : {"building.yaml", "building.stl", "l_body.stl"}) {
+    EXPECT_EQ(contents(a + "/" + file), contents(b + "/" + file)) << file;
+  }
+  EXPECT_NE(contents(a + "/building.stl"), contents(c + "/building.stl"));
+  // Binary STL: an 80-byte header, a count, 50 bytes a triangle; 12 triangles a box.
+  const std::string body = contents(a + "/l_body.stl");
+  EXPECT_EQ(body.size(), 84u + 2 * 12 * 50);
+}
+
+TEST(BuildingScene, OptionsThatGiveNoBuildingAreRefused) {
+  auto refused = [](auto change) {
+    tools::BuildingOptions o;
+    change(o);
+    EXPECT_THROW(tools::writeBuildingScene(folder("refused"), o), InvalidArgument);
+  };
+  refused([](tools::BuildingOptions& o) { o.rooms_x = o.rooms_y = 1; });
+  refused([](tools::BuildingOptions& o) { o.door_width = o.room_size; });
+  refused([](tools::BuildingOptions& o) { o.door_height = o.wall_height; });
+  refused([](tools::BuildingOptions& o) { o.body_short_leg = o.door_height; });
+  refused([](tools::BuildingOptions& o) { o.room_size = -1; });
+}
+
+// The OMPL.app baseline: OMPL's discrete validator at OMPL's own step (its default fraction of
+// the space's extent), where `discrete` sets a finer one from the voxels.
+TEST(LargeRigid, TheOmplDefaultValidatorKeepsOmplsOwnStep) {
+  EXPECT_EQ(parseMotionValidatorKind("ompl-default"), MotionValidatorKind::kOmplDefault);
+  EXPECT_STREQ(motionValidatorKindName(MotionValidatorKind::kOmplDefault), "ompl-default");
+  const std::string scene_path =
+      std::string(OCTOMOTION_SOURCE_DIR) + "/robots/scenes/narrow_passage.yaml";
+  const double ompl_default =
+      ompl::base::SpaceInformation(std::make_shared<ompl::base::SE3StateSpace>())
+          .getStateValidityCheckingResolution();
+  SceneOverrides overrides;
+  overrides.motion_validator = MotionValidatorKind::kOmplDefault;
+  PlanningScene baseline = loadPlanningScene(scene_path, overrides);
+  const auto& si = baseline.setup->getSpaceInformation();
+  EXPECT_TRUE(
+      dynamic_cast<const ompl::base::DiscreteMotionValidator*>(si->getMotionValidator().get()));
+  EXPECT_EQ(si->getStateValidityCheckingResolution(), ompl_default);
+  overrides.motion_validator = MotionValidatorKind::kDiscrete;
+  PlanningScene discrete = loadPlanningScene(scene_path, overrides);
+  EXPECT_LT(discrete.setup->getSpaceInformation()->getStateValidityCheckingResolution(),
+            ompl_default);
+}
+
+// The certified validator's clearance for the octree (the grid's, read through groups of
+// clearance spheres) never exceeds the exact distance, at random poses of the shipped rigid
+// bodies and of the generated building's large one.
+TEST(LargeRigid, TheMotionClearanceIsALowerBoundOnTheExactDistance) {
+  ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
+  const std::string scenes = std::string(OCTOMOTION_SOURCE_DIR) + "/robots/scenes/";
+  for (const std::string& path : {scenes + "narrow_passage.yaml", scenes + "rooms.yaml",
+                                  tools::writeBuildingScene(folder("clearance"))}) {
+    SCOPED_TRACE(path);
+    PlanningScene scene = loadPlanningScene(path);
+    const std::shared_ptr<const CollisionBackend> octree = checkerBackend(scene);
+    const FclCollisionModel& fcl = *scene.fclModel();
+    auto octree_scratch = octree->makeBackendScratch();
+    auto fcl_scratch = fcl.makeScratch();
+    const Eigen::AlignedBox3d bounds = *scene.spec.problem.bounds;
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    std::normal_distribution<double> normal;
+    int free = 0, positive = 0;
+    for (int i = 0; i < 1500; ++i) {
+      Eigen::Isometry3d X_WB = Eigen::Isometry3d::Identity();
+      for (int a = 0; a < 3; ++a) {
+        X_WB.translation()[a] = bounds.min()[a] + unit(rng) * bounds.sizes()[a];
+      }
+      Eigen::Quaterniond r(normal(rng), normal(rng), normal(rng), normal(rng));
+      X_WB.linear() = r.normalized().toRotationMatrix();
+      if (octree->inCollision(nullptr, 0, X_WB, *octree_scratch)) continue;
+      ++free;
+      const double bound = octree->motionClearance(*octree_scratch);
+      fcl.setConfiguration(nullptr, 0, X_WB, *fcl_scratch);
+      const double exact = fcl.environmentDistance(*fcl_scratch);
+      EXPECT_LE(bound, exact + 1e-5) << "state " << i;
+      positive += bound > 0 ? 1 : 0;
+    }
+    EXPECT_GT(free, 100);
+    EXPECT_GT(positive, 0);  // the bound is not trivially 0
+  }
+}
+
+TEST(LargeRigid, TheGeneratedBuildingIsPlannedAndFclFindsThePathFree) {
+  ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
+  const std::string scene_path = tools::writeBuildingScene(folder("plan"));
+  SceneOverrides overrides;
+  overrides.time = 120;  // a cap for sanitizer builds; RRTConnect stops when it solves
+  overrides.seed = 1;
+  PlanningScene scene = loadPlanningScene(scene_path, overrides);
+  const ompl::base::SpaceInformationPtr& si = scene.setup->getSpaceInformation();
+  ASSERT_TRUE(dynamic_cast<const CertifiedMotionValidator*>(si->getMotionValidator().get()));
+  const auto& pdef = scene.setup->getProblemDefinition();
+  ASSERT_EQ(pdef->getStartStateCount(), 1u);
+  const auto* goal = pdef->getGoal()->as<ompl::base::GoalState>();
+  ASSERT_TRUE(goal);
+  // Free ends, but walls between them: the problem is not one straight motion.
+  EXPECT_TRUE(si->isValid(pdef->getStartState(0)));
+  EXPECT_TRUE(si->isValid(goal->getState()));
+  EXPECT_FALSE(si->checkMotion(pdef->getStartState(0), goal->getState()));
+
+  const PlanResult result = plan(scene);
+  ASSERT_TRUE(result.solved);
+  ompl::geometric::PathGeometric dense(*result.path);
+  dense.interpolate(static_cast<unsigned>(100 * (result.path->getStateCount() - 1) + 1));
+  const FclCollisionModel& fcl = *scene.fclModel();
+  auto scratch = fcl.makeScratch();
+  std::vector<double> q;
+  Eigen::Isometry3d X_WB = Eigen::Isometry3d::Identity();
+  std::size_t colliding = 0;
+  for (std::size_t i = 0; i < dense.getStateCount(); ++i) {
+    ASSERT_TRUE(
+        stateToConfiguration(fcl.robot(), dense.getState(static_cast<unsigned>(i)), q, X_WB));
+    fcl.setConfiguration(q.data(), q.size(), X_WB, *scratch);
+    colliding += fcl.inCollision(*scratch) ? 1 : 0;
+  }
+  EXPECT_EQ(colliding, 0u) << "of " << dense.getStateCount() << " states";
+}
+
+}  // namespace
+}  // namespace octomotion
