@@ -14,8 +14,6 @@
 
 #include "internal/collision_model_parts.h"
 #include "octomotion/error.h"
-#include "octomotion/motion/move_tree.h"
-#include "octomotion/octree/traversal.h"
 
 namespace octomotion {
 
@@ -254,43 +252,14 @@ bool environmentOctreePass(const CollisionModelParts& parts, const RefineData& d
   return false;
 }
 
-// B's tree placed in A's frame meets A's tree (SelfCollision's tree stage, for other trees).
-bool treesMeet(const LinkVoxels& a, const Eigen::Isometry3d& X_WA, const LinkVoxels& b,
-               const Eigen::Isometry3d& X_WB, Rounding rounding, CheckerPath path,
-               CollisionScratch& fused) {
-  const Eigen::Matrix3d R_AW = X_WA.linear().transpose();
-  Eigen::Isometry3d X_AB = Eigen::Isometry3d::Identity();
-  X_AB.linear() = R_AW * X_WB.linear();
-  X_AB.translation() = R_AW * (X_WB.translation() - X_WA.translation());
-  if (!SelfCollision::boxesMeet(a, X_WA, X_AB.linear(), b, X_WB * b.center_L)) return false;
-  if (path == CheckerPath::kFused) return collides(*b.movable, X_AB, a.source, rounding, fused);
-  return intersects(moveTree(b.source, X_AB, a.source.grid(), rounding), a.source);
-}
-
-bool finerForEnvironment(const LinkTree& link) {
-  return link.self_voxels &&
-         link.voxels.source.grid().voxelSize() < link.self_voxels->source.grid().voxelSize();
-}
-
 // The octree's pass over the self half: the checked pairs whose voxels meet, in
-// r.uncertain_pairs. When the links' environment trees are finer than their self trees (the
-// default: a quarter of the voxel), a pair whose self trees meet is tested again with those:
-// conservative trees that share no voxel certify it free too, with a narrower margin, at a
-// fraction of FCL's cost on two meshes that nearly touch.
+// r.uncertain_pairs.
 void selfOctreePass(const CollisionModelParts& parts, RefineScratch& r, CheckerPath path,
                     CheckScratch& scratch) {
   const LinkModels& links = parts.links;
   r.uncertain_pairs.clear();
   parts.self.confirmedInCollision(links, path, scratch, [&](const SelfPair& p) {
-    const LinkTree& a = links.links[p.a];
-    const LinkTree& b = links.links[p.b];
-    if (finerForEnvironment(a) && finerForEnvironment(b) &&
-        !treesMeet(a.voxels, scratch.robot.linkPose(a.link), b.voxels,
-                   scratch.robot.linkPose(b.link), parts.self.rounding, path, scratch.fused)) {
-      ++r.counts.fine_pairs_cleared;
-      return false;
-    }
-    r.uncertain_pairs.emplace_back(a.link, b.link);
+    r.uncertain_pairs.emplace_back(links.links[p.a].link, links.links[p.b].link);
     return false;
   });
 }

@@ -297,11 +297,9 @@ class SelfBroadPhaseScratch {
 // RefineMode::kExact: what one thread's refined queries decided how, counted from the scratch's
 // first refined query (OctreeCollisionModel::refineCounts). Links and pairs the octree could
 // not certify: contacts certain without FCL (a link's surface point deep inside a primitive
-// obstacle), self pairs the links' finer environment trees then cleared, and the link-objects
-// and link-link tests FCL ran.
+// obstacle), and the link-objects and link-link tests FCL ran.
 struct RefineCounts {
   std::uint64_t certain_contacts = 0;
-  std::uint64_t fine_pairs_cleared = 0;
   std::uint64_t fcl_links = 0;
   std::uint64_t fcl_pairs = 0;
 };
