@@ -5,13 +5,18 @@
 // states), the share of FCL-free states it rejects (false positives), the contacts it misses,
 // and FCL's mean over its own. A plain program like planner_self_pair_tables_bench; needs
 // ../shared/data (MotionBenchMaker problems and the Panda).
-// Usage: build/bench/planner_refine_bench [STATES] [SETS] [RESOLUTION]   (default 5000 4 0.01)
+// For the refined rows also, per check: the contacts certain without FCL, and the links (against
+// the environment) and link pairs FCL decided.
+// SETTINGS picks rows (digits 0-3, e.g. 01 for a quick profile without the self-pair tables'
+// build). Usage: build/bench/planner_refine_bench [STATES] [SETS] [RESOLUTION] [SETTINGS]
+//        (default 5000 4 0.01 0123)
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <string>
 
 #include <ompl/util/Console.h>
 
@@ -34,6 +39,7 @@ int run(int argc, char** argv) {
   const int count = argc > 1 ? std::atoi(argv[1]) : 5000;
   const int sets = argc > 2 ? std::atoi(argv[2]) : 4;
   const double resolution = argc > 3 ? std::atof(argv[3]) : 0.01;
+  const std::string settings = argc > 4 ? argv[4] : "0123";
   if (count < 1 || sets < 1 || !(resolution > 0)) {
     throw InvalidArgument("STATES and SETS must be >= 1, RESOLUTION > 0");
   }
@@ -81,6 +87,7 @@ int run(int argc, char** argv) {
     // link trees' voxel (a narrower self margin leaves fewer pairs to FCL); then refined with
     // self-pair tables (cells certified by FCL at build time skip the pair's tests).
     for (int setting = 0; setting < 4; ++setting) {
+      if (settings.find(static_cast<char>('0' + setting)) == std::string::npos) continue;
       const RefineMode refine = setting == 0 ? RefineMode::kNone : RefineMode::kExact;
       CollisionModelOptions options;
       options.resolution = resolution;
@@ -94,7 +101,9 @@ int run(int argc, char** argv) {
       CheckScratch scratch = model.makeScratch();
       int false_positives = 0, missed = 0;
       double check_seconds = 0;
+      RefineCounts counts;
       for (int pass = 0; pass < 2; ++pass) {
+        const RefineCounts start = model.refineCounts(scratch);
         false_positives = missed = 0;
         const auto t0 = Clock::now();
         for (std::size_t i = 0; i < states.size(); ++i) {
@@ -104,6 +113,9 @@ int run(int argc, char** argv) {
           missed += !hit && truth[i];
         }
         check_seconds = seconds(t0, Clock::now());
+        const RefineCounts end = model.refineCounts(scratch);
+        counts = {end.certain_contacts - start.certain_contacts, end.fcl_links - start.fcl_links,
+                  end.fcl_pairs - start.fcl_pairs};
       }
       const double mean = 1e6 * check_seconds / count;
       std::printf("  %-22s mean %8.3f us, FP %5.2f %%, missed %d, FCL / this %5.2f, build %.2f s\n",
@@ -113,6 +125,12 @@ int run(int argc, char** argv) {
                                  : "exact, self tables",
                   mean, 100.0 * false_positives / std::max(free_states, 1), missed, fcl_mean / mean,
                   build);
+      if (refine == RefineMode::kExact) {
+        std::printf("  %-22s per check: certain contacts %.3f, FCL links %.3f, FCL pairs %.3f\n",
+                    "", static_cast<double>(counts.certain_contacts) / count,
+                    static_cast<double>(counts.fcl_links) / count,
+                    static_cast<double>(counts.fcl_pairs) / count);
+      }
     }
   }
   return 0;

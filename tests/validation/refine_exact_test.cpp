@@ -30,10 +30,16 @@ constexpr std::uint64_t kSeed = 0x5eed0028;
 struct Agreement {
   std::size_t states = 0, fcl_env = 0, fcl_self = 0;
   std::size_t wrong_env = 0, wrong_self = 0;
+  // The whole check (both halves, FCL after the octree's pass over both) against FCL's.
+  std::size_t wrong_whole = 0;
+  // States where the octree answered a certain contact without FCL, and of those the ones FCL
+  // calls free of the environment (must be none).
+  std::size_t certain = 0, wrong_certain = 0;
   std::string first;
 };
 
-// Every sample checked by both; each half must give FCL's answer.
+// Every sample checked by both; each half and the whole check must give FCL's answer, and a
+// contact certain without FCL must be one of FCL's.
 Agreement compare(const PlanningScene& scene, const std::vector<Sample>& samples,
                   CheckerPath path = CheckerPath::kFused) {
   EXPECT_EQ(scene.model->refine(), RefineMode::kExact);
@@ -42,8 +48,19 @@ Agreement compare(const PlanningScene& scene, const std::vector<Sample>& samples
   const std::unique_ptr<BackendScratch> scratch = checked.makeBackendScratch();
   const std::unique_ptr<BackendScratch> exact = reference->makeBackendScratch();
   Agreement a;
+  const CheckScratch& check = checked.scratchOf(*scratch).check;
   for (const Sample& s : samples) {
+    const std::uint64_t certain_before = scene.model->refineCounts(check).certain_contacts;
     const auto [fe, fs, oe, os] = answersAt(s, *reference, *exact, checked, *scratch);
+    const bool whole = checked.inCollision(s.q.data(), s.q.size(), s.X_WB, *scratch);
+    const bool certain = scene.model->refineCounts(check).certain_contacts > certain_before;
+    a.certain += certain;
+    if (certain && !fe && a.wrong_certain++ == 0 && a.first.empty()) {
+      a.first = "certain contact FCL does not find at " + describe(s);
+    }
+    if (whole != (fe || fs) && a.wrong_whole++ == 0 && a.first.empty()) {
+      a.first = std::string("whole check ") + (whole ? "extra" : "missed") + " at " + describe(s);
+    }
     ++a.states;
     a.fcl_env += fe;
     a.fcl_self += fs;
@@ -121,6 +138,8 @@ TEST_P(RefineExactScene, AgreesWithFclOnEveryState) {
   }
   EXPECT_EQ(a.wrong_env, 0u) << a.first;
   EXPECT_EQ(a.wrong_self, 0u) << a.first;
+  EXPECT_EQ(a.wrong_whole, 0u) << a.first;
+  EXPECT_EQ(a.wrong_certain, 0u) << a.first;
   EXPECT_GT(a.fcl_env, 0u) << "no sampled state touches the environment";
 }
 
@@ -131,7 +150,7 @@ TEST(RefineExact, MoveTreePathAgreesWithFclToo) {
   const std::string path = std::string(OCTOMOTION_SOURCE_DIR) + "/robots/scenes/bookshelf.yaml";
   const PlanningScene scene = loadShippedExact(path);
   const Agreement a = compare(scene, uniformSamples(scene, 500, kSeed + 1), CheckerPath::kMoveTree);
-  EXPECT_EQ(a.wrong_env + a.wrong_self, 0u) << a.first;
+  EXPECT_EQ(a.wrong_env + a.wrong_self + a.wrong_whole + a.wrong_certain, 0u) << a.first;
   EXPECT_GT(a.fcl_env, 0u);
 }
 
@@ -257,10 +276,13 @@ TEST(RefineExact, PandaInMotionBenchMakerScenesAgreesWithFcl) {
     const std::size_t unrefined = unrefinedFalsePositives(scene, samples);
     std::cout << "[ refine   ] " << p.set << ": FCL env " << a.fcl_env << " self " << a.fcl_self
               << " of " << a.states << "; disagreements env " << a.wrong_env << " self "
-              << a.wrong_self << "; unrefined false positives " << unrefined << "\n";
-    EXPECT_EQ(a.wrong_env + a.wrong_self, 0u) << a.first;
+              << a.wrong_self << "; unrefined false positives " << unrefined
+              << "; certain contacts " << a.certain << "\n";
+    EXPECT_EQ(a.wrong_env + a.wrong_self + a.wrong_whole + a.wrong_certain, 0u) << a.first;
     EXPECT_GT(a.fcl_env + a.fcl_self, 0u);
     EXPECT_GT(unrefined, 0u) << "nothing for refine to remove";
+    // The MotionBenchMaker obstacles are boxes and cylinders: the shortcut is exercised.
+    EXPECT_GT(a.certain, 0u) << "no contact was certain without FCL";
   }
 }
 
@@ -293,7 +315,7 @@ TEST(RefineExact, DifferentialScenesAgreeWithFcl) {
     SCOPED_TRACE(c.scene_file + ": " + c.description);
     const Agreement a =
         compare(scene, uniformSamples(scene, 200, seed), octreeCheckerPath(*c.overrides.checker));
-    EXPECT_EQ(a.wrong_env + a.wrong_self, 0u) << a.first;
+    EXPECT_EQ(a.wrong_env + a.wrong_self + a.wrong_whole + a.wrong_certain, 0u) << a.first;
     ++cases;
     states += a.states;
     contacts += a.fcl_env + a.fcl_self;

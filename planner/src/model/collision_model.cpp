@@ -100,6 +100,7 @@ bool OctreeCollisionModel::selfInCollision(CheckerPath path, CheckScratch& scrat
 }
 
 bool OctreeCollisionModel::linksInCollision(CheckerPath path, CheckScratch& scratch) const {
+  if (refine_) return refinedLinksInCollision(path, scratch);
   return environmentInCollision(path, scratch) || selfInCollision(path, scratch);
 }
 

@@ -1,5 +1,5 @@
-// RefineMode::kExact (internal/refine.h): the octree certifies freedom, FCL decides the links and
-// pairs whose voxels meet.
+// RefineMode::kExact (internal/refine.h): the octree certifies freedom, witness points certain
+// contacts with primitive obstacles, FCL decides the links and pairs left.
 #include "internal/refine.h"
 
 #include <algorithm>
@@ -7,7 +7,9 @@
 #include <string>
 #include <utility>
 
+#include <fcl/geometry/bvh/BVH_model.h>
 #include <fcl/geometry/shape/box.h>
+#include <fcl/math/bv/OBBRSS.h>
 #include <fcl/narrowphase/distance.h>
 
 #include "internal/collision_model_parts.h"
@@ -40,6 +42,64 @@ void extend(fcl::AABBd& box, const fcl::AABBd& other, bool first) {
   }
 }
 
+// Up to kWitnessPoints of `points`, spread out: each next one the farthest from those taken.
+std::vector<Eigen::Vector3d> spreadOut(const std::vector<Eigen::Vector3d>& points) {
+  std::vector<Eigen::Vector3d> taken;
+  if (points.empty()) return taken;
+  std::vector<double> gap(points.size(), std::numeric_limits<double>::infinity());
+  std::size_t next = 0;
+  while (taken.size() < std::min(points.size(), kWitnessPoints)) {
+    taken.push_back(points[next]);
+    std::size_t far = 0;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      gap[i] = std::min(gap[i], (points[i] - taken.back()).squaredNorm());
+      if (gap[i] > gap[far]) far = i;
+    }
+    if (gap[far] <= 0) break;  // every point taken (duplicates)
+    next = far;
+  }
+  return taken;
+}
+
+// A robot element's witnesses in its frame: a mesh's vertices (on its triangles), or the centre
+// of a box, ball or cylinder (inside its solid); none for anything else.
+std::vector<Eigen::Vector3d> witnessesOf(const fcl::CollisionGeometryd& geometry) {
+  if (geometry.getObjectType() == fcl::OT_BVH) {
+    const auto* mesh = dynamic_cast<const fcl::BVHModel<fcl::OBBRSSd>*>(&geometry);
+    if (mesh == nullptr || mesh->vertices == nullptr || mesh->tri_indices == nullptr) return {};
+    // Only vertices of triangles: FCL tests triangles, not loose points.
+    std::vector<bool> used(static_cast<std::size_t>(mesh->num_vertices), false);
+    for (int t = 0; t < mesh->num_tris; ++t) {
+      for (int k = 0; k < 3; ++k) used[mesh->tri_indices[t][k]] = true;
+    }
+    std::vector<Eigen::Vector3d> vertices;
+    for (std::size_t v = 0; v < used.size(); ++v) {
+      if (used[v]) vertices.push_back(mesh->vertices[v]);
+    }
+    return spreadOut(vertices);
+  }
+  const fcl::NODE_TYPE type = geometry.getNodeType();
+  if (type == fcl::GEOM_BOX || type == fcl::GEOM_SPHERE || type == fcl::GEOM_CYLINDER) {
+    return {Eigen::Vector3d::Zero()};
+  }
+  return {};
+}
+
+// p_O lies at least kCertainDepth inside the primitive.
+bool deepInside(const Primitive& shape, const Eigen::Vector3d& p_O) {
+  if (const auto* b = std::get_if<Box>(&shape)) {
+    return (p_O.cwiseAbs() - b->half_extents).maxCoeff() <= -kCertainDepth;
+  }
+  if (const auto* ball = std::get_if<Sphere>(&shape)) {
+    const double r = ball->radius - kCertainDepth;
+    return r > 0 && p_O.squaredNorm() <= r * r;
+  }
+  const auto& c = std::get<Cylinder>(shape);
+  const double r = c.radius - kCertainDepth;
+  return r > 0 && std::abs(p_O.z()) <= c.length / 2 - kCertainDepth &&
+         p_O.head<2>().squaredNorm() <= r * r;
+}
+
 }  // namespace
 
 RefineData::RefineData(const RobotModel& model, const EnvironmentGeometry& environment,
@@ -59,6 +119,9 @@ RefineData::RefineData(const RobotModel& model, const EnvironmentGeometry& envir
     };
     if (item.spec.kind == EnvironmentObject::Kind::kPrimitive) {
       add(fcl_internal::shapeOf(item.spec.primitive), item.spec.X_WO);
+      object.primitive = item.spec.primitive;
+      object.X_OW = item.spec.X_WO.inverse();
+      has_primitives = true;
     } else if (item.spec.kind == EnvironmentObject::Kind::kMesh) {
       add(fcl_internal::meshOf(item.mesh), item.spec.X_WO);
     } else {
@@ -76,23 +139,57 @@ RefineData::RefineData(const RobotModel& model, const EnvironmentGeometry& envir
     }
     objects.push_back(std::move(object));
   }
+  fcl_internal::RobotScratch prototypes;
+  robot->initScratch(model, prototypes);
+  for (const fcl::CollisionObjectd& element : prototypes.objects) {
+    element_witnesses_E.push_back(witnessesOf(*element.collisionGeometry()));
+  }
 }
 
-fcl_internal::RobotScratch& posedRefineScratch(const RefineData& data, const RobotModel& model,
-                                               std::uint64_t owner, const RobotData& robot,
-                                               RefineScratchHolder& h) {
+RefineScratch& refineScratch(const RefineData& data, const RobotModel& model, std::uint64_t owner,
+                             RefineScratchHolder& h) {
   if (h.get() == nullptr || h.get()->owner != owner) {
     auto scratch = std::make_unique<RefineScratch>();
     scratch->owner = owner;
     data.robot->initScratch(model, scratch->fcl);
+    scratch->posed_at.assign(data.robot->elementCount(), 0);
     h.reset(std::move(scratch));
   }
-  fcl_internal::RobotScratch& s = h.get()->fcl;
-  data.robot->poseElements(robot, s);
-  return s;
+  RefineScratch& r = *h.get();
+  ++r.query;
+  return r;
 }
 
-bool refineLinkHits(const RefineData& data, fcl_internal::RobotScratch& s, int link) {
+void refinePoseLink(const RefineData& data, RefineScratch& r, const RobotData& robot, int link) {
+  for (std::size_t e : data.link_elements[static_cast<std::size_t>(link)]) {
+    if (r.posed_at[e] == r.query) continue;
+    data.robot->poseElement(robot, e, r.fcl);
+    r.posed_at[e] = r.query;
+  }
+}
+
+bool certainLinkContact(const RefineData& data, RefineScratch& r, const RobotData& robot,
+                        int link) {
+  if (!data.has_primitives) return false;
+  refinePoseLink(data, r, robot, link);
+  for (std::size_t e : data.link_elements[static_cast<std::size_t>(link)]) {
+    const std::vector<Eigen::Vector3d>& witnesses = data.element_witnesses_E[e];
+    if (witnesses.empty()) continue;
+    const fcl::CollisionObjectd& element = r.fcl.objects[e];
+    for (const RefineObject& object : data.objects) {
+      if (!object.primitive || !object.box_W.overlap(element.getAABB())) continue;
+      const Eigen::Isometry3d X_OE = object.X_OW * element.getTransform();
+      for (const Eigen::Vector3d& p_E : witnesses) {
+        if (deepInside(*object.primitive, X_OE * p_E)) return true;
+      }
+    }
+  }
+  return false;
+}
+
+bool refineLinkHits(const RefineData& data, RefineScratch& r, const RobotData& robot, int link) {
+  refinePoseLink(data, r, robot, link);
+  fcl_internal::RobotScratch& s = r.fcl;
   for (std::size_t e : data.link_elements[static_cast<std::size_t>(link)]) {
     const fcl::CollisionObjectd& element = s.objects[e];
     for (const RefineObject& object : data.objects) {
@@ -105,7 +202,11 @@ bool refineLinkHits(const RefineData& data, fcl_internal::RobotScratch& s, int l
   return false;
 }
 
-bool refinePairHits(const RefineData& data, fcl_internal::RobotScratch& s, int link_a, int link_b) {
+bool refinePairHits(const RefineData& data, RefineScratch& r, const RobotData& robot, int link_a,
+                    int link_b) {
+  refinePoseLink(data, r, robot, link_a);
+  refinePoseLink(data, r, robot, link_b);
+  fcl_internal::RobotScratch& s = r.fcl;
   for (std::size_t a : data.link_elements[static_cast<std::size_t>(link_a)]) {
     for (std::size_t b : data.link_elements[static_cast<std::size_t>(link_b)]) {
       if (fcl_internal::collidePair(s.objects[a], s.objects[b], s.request, s.result)) return true;
@@ -114,7 +215,60 @@ bool refinePairHits(const RefineData& data, fcl_internal::RobotScratch& s, int l
   return false;
 }
 
-double refineEnvironmentDistance(const RefineData& data, fcl_internal::RobotScratch& s) {
+bool refineUncertainLinksHit(const RefineData& data, RefineScratch& r, const RobotData& robot) {
+  for (const int link : r.uncertain_links) {
+    ++r.counts.fcl_links;
+    if (refineLinkHits(data, r, robot, link)) return true;
+  }
+  return false;
+}
+
+bool refineUncertainPairsHit(const RefineData& data, RefineScratch& r, const RobotData& robot) {
+  for (const auto& [a, b] : r.uncertain_pairs) {
+    ++r.counts.fcl_pairs;
+    if (refinePairHits(data, r, robot, a, b)) return true;
+  }
+  return false;
+}
+
+// The octree's pass over the environment half: true on a certain contact, else the links it
+// cannot clear in r.uncertain_links.
+bool environmentOctreePass(const CollisionModelParts& parts, const RefineData& data,
+                           RefineScratch& r, CheckerPath path, CheckScratch& scratch) {
+  const EnvironmentModel& environment = parts.environment;
+  const LinkModels& links = parts.links;
+  r.uncertain_links.clear();
+  for (const EnvironmentLinkTest& t : links.environment_tests) {
+    const Eigen::Isometry3d& X_WL = scratch.robot.linkPose(t.link);
+    if (sphereMeetsBox(t, X_WL, environment.box_W) &&
+        environment.linkHits(t, links.links[t.slot].voxels, X_WL, path, scratch.fused)) {
+      if (certainLinkContact(data, r, scratch.robot, t.link)) {
+        ++r.counts.certain_contacts;
+        return true;
+      }
+      r.uncertain_links.push_back(t.link);
+    }
+  }
+  return false;
+}
+
+// The octree's pass over the self half: the checked pairs whose voxels meet, in
+// r.uncertain_pairs.
+void selfOctreePass(const CollisionModelParts& parts, RefineScratch& r, CheckerPath path,
+                    CheckScratch& scratch) {
+  const LinkModels& links = parts.links;
+  r.uncertain_pairs.clear();
+  parts.self.confirmedInCollision(links, path, scratch, [&](const SelfPair& p) {
+    r.uncertain_pairs.emplace_back(links.links[p.a].link, links.links[p.b].link);
+    return false;
+  });
+}
+
+double refineEnvironmentDistance(const RefineData& data, RefineScratch& r, const RobotData& robot) {
+  for (std::size_t link = 0; link < data.link_elements.size(); ++link) {
+    refinePoseLink(data, r, robot, static_cast<int>(link));
+  }
+  const fcl_internal::RobotScratch& s = r.fcl;
   double best = std::numeric_limits<double>::infinity();
   fcl::DistanceRequestd request;
   fcl::DistanceResultd result;
@@ -137,31 +291,33 @@ double refineEnvironmentDistance(const RefineData& data, fcl_internal::RobotScra
 
 bool OctreeCollisionModel::refinedEnvironmentInCollision(CheckerPath path,
                                                          CheckScratch& scratch) const {
-  const detail::EnvironmentModel& environment = parts_->environment;
-  const detail::LinkModels& links = parts_->links;
-  fcl_internal::RobotScratch* exact = nullptr;  // posed on the first link the octree cannot clear
-  for (const detail::EnvironmentLinkTest& t : links.environment_tests) {
-    const Eigen::Isometry3d& X_WL = scratch.robot.linkPose(t.link);
-    if (detail::sphereMeetsBox(t, X_WL, environment.box_W) &&
-        environment.linkHits(t, links.links[t.slot].voxels, X_WL, path, scratch.fused)) {
-      if (exact == nullptr) {
-        exact = &detail::posedRefineScratch(*refine_, robot_, id_, scratch.robot, scratch.refine);
-      }
-      if (detail::refineLinkHits(*refine_, *exact, t.link)) return true;
-    }
-  }
-  return false;
+  detail::RefineScratch& r = detail::refineScratch(*refine_, robot_, id_, scratch.refine);
+  return detail::environmentOctreePass(*parts_, *refine_, r, path, scratch) ||
+         detail::refineUncertainLinksHit(*refine_, r, scratch.robot);
 }
 
 bool OctreeCollisionModel::refinedSelfInCollision(CheckerPath path, CheckScratch& scratch) const {
-  const detail::LinkModels& links = parts_->links;
-  fcl_internal::RobotScratch* exact = nullptr;
-  return parts_->self.confirmedInCollision(links, path, scratch, [&](const detail::SelfPair& p) {
-    if (exact == nullptr) {
-      exact = &detail::posedRefineScratch(*refine_, robot_, id_, scratch.robot, scratch.refine);
-    }
-    return detail::refinePairHits(*refine_, *exact, links.links[p.a].link, links.links[p.b].link);
-  });
+  detail::RefineScratch& r = detail::refineScratch(*refine_, robot_, id_, scratch.refine);
+  detail::selfOctreePass(*parts_, r, path, scratch);
+  return detail::refineUncertainPairsHit(*refine_, r, scratch.robot);
+}
+
+// The two halves in one query, so a link's FCL objects are posed once. The environment's FCL
+// tests come before the self pass: the self pass certifies no contact, so a contact FCL finds
+// there first spares it.
+bool OctreeCollisionModel::refinedLinksInCollision(CheckerPath path, CheckScratch& scratch) const {
+  detail::RefineScratch& r = detail::refineScratch(*refine_, robot_, id_, scratch.refine);
+  if (detail::environmentOctreePass(*parts_, *refine_, r, path, scratch) ||
+      detail::refineUncertainLinksHit(*refine_, r, scratch.robot)) {
+    return true;
+  }
+  detail::selfOctreePass(*parts_, r, path, scratch);
+  return detail::refineUncertainPairsHit(*refine_, r, scratch.robot);
+}
+
+RefineCounts OctreeCollisionModel::refineCounts(const CheckScratch& scratch) const {
+  const detail::RefineScratch* r = scratch.refine.get();
+  return r != nullptr && r->owner == id_ ? r->counts : RefineCounts{};
 }
 
 double OctreeCollisionModel::refinedClearance(const CheckScratch& scratch, double margin) const {
@@ -170,7 +326,7 @@ double OctreeCollisionModel::refinedClearance(const CheckScratch& scratch, doubl
                            : clearanceLowerBoundTree(scratch);
   if (!refine_ || bound >= margin) return bound;
   return detail::refineEnvironmentDistance(
-      *refine_, detail::posedRefineScratch(*refine_, robot_, id_, scratch.robot, scratch.refine));
+      *refine_, detail::refineScratch(*refine_, robot_, id_, scratch.refine), scratch.robot);
 }
 
 }  // namespace octomotion

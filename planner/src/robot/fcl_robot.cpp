@@ -132,12 +132,14 @@ void RobotGeometry::pose(const RobotModel& robot, const double* q, std::size_t q
 }
 
 void RobotGeometry::poseElements(const RobotData& data, RobotScratch& s) const {
-  for (std::size_t i = 0; i < elements_.size(); ++i) {
-    const Element& e = elements_[i];
-    const Eigen::Isometry3d X_WE = data.linkPose(e.link) * e.X_LE;
-    s.objects[i].setTransform(X_WE.rotation(), X_WE.translation());
-    setTightAabb(s.objects[i]);
-  }
+  for (std::size_t i = 0; i < elements_.size(); ++i) poseElement(data, i, s);
+}
+
+void RobotGeometry::poseElement(const RobotData& data, std::size_t element, RobotScratch& s) const {
+  const Element& e = elements_[element];
+  const Eigen::Isometry3d X_WE = data.linkPose(e.link) * e.X_LE;
+  s.objects[element].setTransform(X_WE.rotation(), X_WE.translation());
+  setTightAabb(s.objects[element]);
 }
 
 std::vector<std::pair<int, int>> RobotGeometry::collidingPairs(RobotScratch& s, bool all) const {

@@ -3,12 +3,17 @@
 // meet the environment's, or a checked pair whose voxels meet, is decided by FCL on the original
 // geometry: the robot's links as FCL objects (fcl_robot.h), each object of the scene as a posed
 // FCL shape (meshes and primitives) or, for point clouds and OctoMaps, whose geometry is their
-// voxels, one FCL box per black leaf on the model's grid. Built once with the model, then
-// constant and shared by threads; each thread poses the robot in its own RefineScratch.
+// voxels, one FCL box per black leaf on the model's grid. Before FCL, a link the octree cannot
+// clear is tested for a certain contact (a witness point of its surface deep inside a
+// primitive obstacle), and FCL runs only on the links left uncertain. Built once with the
+// model, then constant and shared by threads; each thread poses the robot in its own
+// RefineScratch, only the links it tests.
 #pragma once
 
 #include <cstdint>
 #include <memory>
+#include <optional>
+#include <utility>
 #include <vector>
 
 #include "../../robot/internal/fcl_robot.h"
@@ -20,7 +25,16 @@ namespace octomotion::detail {
 struct RefineObject {
   std::vector<fcl::CollisionObjectd> shapes;  // one (primitive, mesh) or one box per voxel
   fcl::AABBd box_W;                           // of all shapes
+  // A box, ball or cylinder obstacle: the shape in its frame O (FCL treats it as a solid).
+  std::optional<Primitive> primitive;
+  Eigen::Isometry3d X_OW = Eigen::Isometry3d::Identity();
 };
+
+// A point of a robot element this deep inside a primitive obstacle makes FCL report a contact:
+// far above FCL's GJK tolerance (micrometres), far below any obstacle's size.
+inline constexpr double kCertainDepth = 1e-4;
+// Witness points kept per mesh element: its vertices, spread out (farthest first).
+inline constexpr std::size_t kWitnessPoints = 24;
 
 struct RefineData {
   RefineData(const RobotModel& robot, const EnvironmentGeometry& objects, const WorldGrid& grid,
@@ -30,24 +44,46 @@ struct RefineData {
   std::vector<RefineObject> objects;
   // Per robot link: its elements (indices in RobotGeometry's order).
   std::vector<std::vector<std::size_t>> link_elements;
+  // Per element, in its frame E: points of its surface whose triangles FCL tests (a mesh's
+  // vertices) or, for a primitive, its centre (inside its solid). Certain contacts.
+  std::vector<std::vector<Eigen::Vector3d>> element_witnesses_E;
+  bool has_primitives = false;  // some object is a primitive (certain contacts can exist)
 };
 
 struct RefineScratch {
   std::uint64_t owner = 0;  // id() of the model it was made for
   fcl_internal::RobotScratch fcl;
-  bool posed = false;  // fcl's objects are at the current query's link poses
+  // Elements are posed on first use in a query: posed_at[e] == query when e is at this query's
+  // link poses (queries count up from 1).
+  std::vector<std::uint64_t> posed_at;
+  std::uint64_t query = 0;
+  // What the octree could not certify, for FCL after the octree pass: robot links against
+  // the environment, link pairs.
+  std::vector<int> uncertain_links;
+  std::vector<std::pair<int, int>> uncertain_pairs;
+  RefineCounts counts;
 };
 
-// The scratch's FCL objects at the link poses in `robot`, posing them on the query's first use.
-fcl_internal::RobotScratch& posedRefineScratch(const RefineData& data, const RobotModel& model,
-                                               std::uint64_t owner, const RobotData& robot,
-                                               RefineScratchHolder& holder);
+// The thread's refine scratch for a new query at the link poses in `robot` (FK done), made on
+// first use; elements are posed lazily (refinePoseLink).
+RefineScratch& refineScratch(const RefineData& data, const RobotModel& model, std::uint64_t owner,
+                             RefineScratchHolder& holder);
+// Poses `link`'s elements for the current query unless done already.
+void refinePoseLink(const RefineData& data, RefineScratch& r, const RobotData& robot, int link);
 
+// Without FCL: a witness point of one of `link`'s elements lies kCertainDepth inside a primitive
+// obstacle, so FCL finds a contact (its triangle, or its solid, meets the obstacle's solid).
+bool certainLinkContact(const RefineData& data, RefineScratch& r, const RobotData& robot, int link);
 // FCL: one of `link`'s elements touches one of the objects' shapes.
-bool refineLinkHits(const RefineData& data, fcl_internal::RobotScratch& s, int link);
+bool refineLinkHits(const RefineData& data, RefineScratch& r, const RobotData& robot, int link);
 // FCL: an element of link_a touches one of link_b.
-bool refinePairHits(const RefineData& data, fcl_internal::RobotScratch& s, int link_a, int link_b);
+bool refinePairHits(const RefineData& data, RefineScratch& r, const RobotData& robot, int link_a,
+                    int link_b);
+// FCL on the links in r.uncertain_links, then the pairs in r.uncertain_pairs, each list in
+// order, stopping at the first contact.
+bool refineUncertainLinksHit(const RefineData& data, RefineScratch& r, const RobotData& robot);
+bool refineUncertainPairsHit(const RefineData& data, RefineScratch& r, const RobotData& robot);
 // FCL's exact distance from the robot's elements to the objects (0 in contact).
-double refineEnvironmentDistance(const RefineData& data, fcl_internal::RobotScratch& s);
+double refineEnvironmentDistance(const RefineData& data, RefineScratch& r, const RobotData& robot);
 
 }  // namespace octomotion::detail

@@ -53,6 +53,8 @@ class RobotGeometry {
 
   // Each element's pose and world AABB from link poses already in `data` (forwardKinematics).
   void poseElements(const RobotData& data, RobotScratch& scratch) const;
+  // The same for one element (exact refine mode poses only the links it tests).
+  void poseElement(const RobotData& data, std::size_t element, RobotScratch& scratch) const;
 
   // The robot's checked self pairs (RobotModel::checkedPairs), element by element.
   bool selfInCollision(RobotScratch& scratch) const;

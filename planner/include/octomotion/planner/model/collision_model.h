@@ -294,6 +294,16 @@ class SelfBroadPhaseScratch {
   std::unique_ptr<broadphase::NObjectsOctree> octree_;
 };
 
+// RefineMode::kExact: what one thread's refined queries decided how, counted from the scratch's
+// first refined query (OctreeCollisionModel::refineCounts). Links and pairs the octree could
+// not certify: contacts certain without FCL (a link's surface point deep inside a primitive
+// obstacle), and the link-objects and link-link tests FCL ran.
+struct RefineCounts {
+  std::uint64_t certain_contacts = 0;
+  std::uint64_t fcl_links = 0;
+  std::uint64_t fcl_pairs = 0;
+};
+
 // RefineMode::kExact: the posed FCL objects of one thread, opaque here, made by the first
 // refined query. A copy starts empty (it is remade on use), so copies never share it.
 class RefineScratchHolder {
@@ -387,6 +397,8 @@ class OctreeCollisionModel {
   // OctoMaps: their voxels). Without kExact: clearanceLowerBound.
   double refinedClearance(const CheckScratch& scratch, double margin) const;
   RefineMode refine() const { return options_.refine; }
+  // RefineMode::kExact: what the scratch's refined queries decided how (zero before any).
+  RefineCounts refineCounts(const CheckScratch& scratch) const;
   // A looser, much cheaper bound for certifying motions (CertifiedMotionValidator): the same
   // spheres against the environment's ClearanceGrid (one lookup each; loose by up to a grid
   // cell more). Never above clearanceLowerBoundTree's true target, the distance to the voxels.
@@ -451,6 +463,7 @@ class OctreeCollisionModel {
   std::unique_ptr<const detail::RefineData> refine_;
   bool refinedEnvironmentInCollision(CheckerPath path, CheckScratch& scratch) const;
   bool refinedSelfInCollision(CheckerPath path, CheckScratch& scratch) const;
+  bool refinedLinksInCollision(CheckerPath path, CheckScratch& scratch) const;
 };
 
 }  // namespace octomotion
