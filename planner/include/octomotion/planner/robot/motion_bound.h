@@ -9,10 +9,17 @@
 // by angle theta (OMPL's SE(3) interpolation): at most |dt| + radius * theta, radius bounding the
 // distance of every point from the root frame's origin.
 //
+// Self pairs (RobotModel::checkedPairs): the distance between two links changes only through
+// the joints that move one of them and not the other (those above their common ancestor move
+// both rigidly), so the pair's relative path-length bound is sum_v pairLever(p, v) |dq_v| over
+// those joints alone; and a lower bound on the distance between the two links' geometry at a
+// pose comes from spheres that hold each link's points (pairDistance).
+//
 // The geometry is read once (meshes through CollisionMeshes with the conventions given, so the
 // points are those the collision models use); primitives by their bounding box's corners.
 #pragma once
 
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -44,6 +51,7 @@ class LinkMotionBound {
   double linkBound(int link, const double* dq) const;
   // The largest over the links with geometry.
   double maxBound(const double* dq) const;
+  const std::vector<int>& geometryLinks() const { return geometry_links_; }
   // Free-flying bodies: the largest distance of a point from the root frame's origin, over every
   // configuration of the robot's own joints (held joints included in their transforms).
   double radius() const { return radius_; }
@@ -51,7 +59,28 @@ class LinkMotionBound {
     return translation + radius_ * angle;
   }
 
+  // The robot's checked self pairs (RobotModel::checkedPairs at construction), in its order.
+  const std::vector<std::pair<int, int>>& pairs() const { return pairs_; }
+  // The bound on how far any point of one link of pair p moves relative to the other along the
+  // straight-line motion dq (variableCount() values); 0 when no joint moves them apart.
+  double pairBound(std::size_t p, const double* dq) const;
+  // A lower bound (>= 0) on the distance between the two links' geometry of pair p at the link
+  // poses in `data`, or `cap` when that bound is at least `cap`: spheres about the links'
+  // points (a whole-link sphere, then kPairSlabs spheres each along the link's longest side).
+  double pairDistance(std::size_t p, const RobotData& data, double cap) const;
+  static constexpr int kPairSlabs = 4;
+
  private:
+  struct Spheres {
+    Eigen::Vector3d center = Eigen::Vector3d::Zero();  // in the link frame
+    double radius = 0;
+    std::vector<Eigen::Vector4d> slabs;  // centre (link frame), radius
+  };
+  static Spheres makeSpheres(const std::vector<Eigen::Vector3d>& points);
+  std::vector<std::pair<int, int>> pairs_;
+  std::vector<double> pair_levers_;  // pair-major, per variable
+  std::vector<Spheres> spheres_;     // per link (empty slabs: no geometry)
+
   int link_count_ = 0;
   int variable_count_ = 0;
   std::vector<double> levers_;       // link-major
