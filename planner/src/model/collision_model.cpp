@@ -159,9 +159,8 @@ void OctreeCollisionModel::clearanceLowerBoundGridPerLink(const CheckScratch& sc
                                                           const double* caps, double slack,
                                                           double* per_link) const {
   const ClearanceGrid* grid = parts_->environment.clearance.get();
-  for (int l = 0; l < robot_.linkCount(); ++l) {
-    per_link[l] = std::numeric_limits<double>::infinity();
-  }
+  // Links left out of the queries (their reach misses the environment's box): the gap.
+  for (int l = 0; l < robot_.linkCount(); ++l) per_link[l] = parts_->links.unreachable_clearance;
   const WorldGrid& world = parts_->environment.tree.grid();
   const double voxel = world.voxelSize();
   // As in clearanceLowerBoundGrid: the grid bounds the distance from a sphere's centre to every
@@ -175,7 +174,7 @@ void OctreeCollisionModel::clearanceLowerBoundGridPerLink(const CheckScratch& sc
     return std::sqrt((g - p).squaredNorm() + inside * inside) * voxel - radius - 1e-6 - slack;
   };
   for (const detail::LinkTree& lt : parts_->links.links) {
-    if (!lt.touches_environment) continue;  // never reaches the environment's box
+    if (!lt.touches_environment) continue;
     if (!grid) {
       per_link[lt.link] = 0.0;
       continue;

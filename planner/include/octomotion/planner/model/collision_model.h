@@ -392,8 +392,8 @@ class OctreeCollisionModel {
   // cell more). Never above clearanceLowerBoundTree's true target, the distance to the voxels.
   double clearanceLowerBoundGrid(const CheckScratch& scratch) const;
   // The same per robot link into per_link[robot().linkCount()], each less `slack` (floored at
-  // 0); infinite for links that cannot reach the environment. Links with caps[l] <= 0 are not
-  // computed (their value is unspecified).
+  // 0); for links whose reach misses the environment's box, the gap between the two boxes.
+  // Links with caps[l] <= 0 are not computed (their value is unspecified).
   void clearanceLowerBoundGridPerLink(const CheckScratch& scratch, const double* caps, double slack,
                                       double* per_link) const;
 
