@@ -341,10 +341,11 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
       for (std::size_t p : t.active_pairs) r.distance[p] = t.distance[slot * pairs + p];
       return true;
     };
+    // s2 first: an edge to an invalid state (most rejected edges) ends before s1 is looked at.
     std::size_t slot1 = 0, slot2 = 0;
-    evaluateEnd(0.0, slot1);
     const bool s2_valid = evaluateEnd(1.0, slot2);
     if (!s2_valid && !want_last) return false;
+    evaluateEnd(0.0, slot1);
     t.todo.clear();
     t.todo.push_back({0.0, 1.0, slot1, slot2, s2_valid, 0, 0});
     // Breadth first (midpoints first, coarse to fine) finds a collision with few checks; depth

@@ -6,11 +6,12 @@
 // link l when l's path-length bound over it (LinkMotionBound, robot/motion_bound.h) is less
 // than the sum of l's clearances at its ends (a lower bound on its distance,
 // CollisionBackend::motionClearances). Pair by pair, it is free of self-collision when the
-// pair's relative path-length bound (LinkMotionBound::pairBound: only the joints that move one
-// link and not the other) is less than the sum of the pair's distance bounds at its ends
-// (LinkMotionBound::pairDistance). A link or pair whose bound over the interval is at most
+// bound on the change of the pair's distance (LinkMotionBound::pairBound: only the joints that
+// move one link and not the other) is less than the sum of the pair's distance bounds at its
+// ends (LinkMotionBound::pairDistance). A link or pair whose bound over the interval is at most
 // `resolution` is decided by the checked ends: each of its points then stays within
-// resolution / 2 of a pose (relative pose, for a pair) the checker found free. Otherwise the
+// resolution / 2 of a pose the checker found free (for a pair, its distance within
+// resolution / 2 of that at a checked end). Otherwise the
 // midpoint is checked (breadth first: coarse to fine, so a colliding edge fails early) and both
 // halves are tried, each knowing which links and pairs are already proven over it; a midpoint
 // needed by the self pairs alone is checked with selfInCollision. Each thread remembers the

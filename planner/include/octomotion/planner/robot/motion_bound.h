@@ -11,9 +11,10 @@
 //
 // Self pairs (RobotModel::checkedPairs): the distance between two links changes only through
 // the joints that move one of them and not the other (those above their common ancestor move
-// both rigidly), so the pair's relative path-length bound is sum_v pairLever(p, v) |dq_v| over
-// those joints alone; and a lower bound on the distance between the two links' geometry at a
-// pose comes from spheres that hold each link's points (pairDistance).
+// both rigidly); in that ancestor's frame each such joint moves the link below it by at most its
+// lever, so the distance changes by at most sum_v pairLever(p, v) |dq_v| over those joints
+// alone (pairBound); and a lower bound on the distance between the two links' geometry at a pose
+// comes from spheres that hold each link's points (pairDistance).
 //
 // The geometry is read once (meshes through CollisionMeshes with the conventions given, so the
 // points are those the collision models use); primitives by their bounding box's corners.
@@ -61,8 +62,9 @@ class LinkMotionBound {
 
   // The robot's checked self pairs (RobotModel::checkedPairs at construction), in its order.
   const std::vector<std::pair<int, int>>& pairs() const { return pairs_; }
-  // The bound on how far any point of one link of pair p moves relative to the other along the
-  // straight-line motion dq (variableCount() values); 0 when no joint moves them apart.
+  // How much the distance between the two links of pair p can change along the straight-line
+  // motion dq (variableCount() values): the sum of the two links' path-length bounds in their
+  // common ancestor's frame; 0 when no joint moves them apart.
   double pairBound(std::size_t p, const double* dq) const;
   // A lower bound (>= 0) on the distance between the two links' geometry of pair p at the link
   // poses in `data`, or `cap` when that bound is at least `cap`: spheres about the links'
