@@ -5,8 +5,10 @@
 // the same edges (per problem, 40 from a valid state toward a uniform one, at most RRTConnect's
 // default range of 0.2 x the space's extent, ending valid) in each iteration; edges per second
 // are `items_per_second`, and
-// `checks_per_edge` counts full state checks (the certified validator's self-only checks in
-// `self_checks_per_edge`), `accepted` the share of edges found free.
+// `checks_per_edge` counts state checks that test the environment (the certified validator's
+// self-pair-only checks in `self_checks_per_edge`), `accepted` the share of edges found free.
+// The certified validator remembers the last valid ends it checked (64 per thread): across
+// iterations some of these edges' ends are remembered, as a planner's tree nodes are.
 //
 //   build/bench/planner_motion_validator_bench --benchmark_repetitions=3
 //       --benchmark_report_aggregates_only=true  (one command line)

@@ -167,6 +167,47 @@ double OctreeCollisionModel::clearanceLowerBoundGrid(const CheckScratch& scratch
   return best;  // infinite when no link can reach the environment
 }
 
+void OctreeCollisionModel::clearanceLowerBoundGridPerLink(const CheckScratch& scratch,
+                                                          const double* caps, double slack,
+                                                          double* per_link) const {
+  const ClearanceGrid* grid = parts_->environment.clearance.get();
+  // Links left out of the queries (their reach misses the environment's box): the gap.
+  for (int l = 0; l < robot_.linkCount(); ++l) per_link[l] = parts_->links.unreachable_clearance;
+  const WorldGrid& world = parts_->environment.tree.grid();
+  const double voxel = world.voxelSize();
+  // As in clearanceLowerBoundGrid: the grid bounds the distance from a sphere's centre to every
+  // black voxel, outside the universe from the nearest point inside it.
+  auto sphereClearance = [&](const Eigen::Vector3d& centre_W, double radius) {
+    const Eigen::Vector3d g = world.toGrid(centre_W);
+    const double side = grid->sideVoxels();
+    const Eigen::Vector3d p = g.cwiseMax(0.0).cwiseMin(side * (1 - 1e-12));
+    const double c[3] = {p.x(), p.y(), p.z()};
+    const double inside = grid->clearance(c);
+    return std::sqrt((g - p).squaredNorm() + inside * inside) * voxel - radius - 1e-6 - slack;
+  };
+  for (const detail::LinkTree& lt : parts_->links.links) {
+    if (!lt.touches_environment) continue;
+    if (!grid) {
+      per_link[lt.link] = 0.0;
+      continue;
+    }
+    if (caps[lt.link] <= 0) continue;
+    const Eigen::Isometry3d& X_WL = scratch.robot.linkPose(lt.link);
+    // The link's bounding sphere first: one lookup settles a link far from every obstacle.
+    const double whole = sphereClearance(X_WL * lt.voxels.center_L, lt.voxels.radius);
+    if (whole >= caps[lt.link]) {
+      per_link[lt.link] = whole;
+      continue;
+    }
+    double best = std::numeric_limits<double>::infinity();
+    for (const Eigen::Vector4d& s : lt.spheres_L) {
+      best = std::min(best, sphereClearance(X_WL * Eigen::Vector3d(s.head<3>()), s[3]));
+      if (best <= whole) break;  // no better than the bounding sphere's
+    }
+    per_link[lt.link] = std::max(0.0, std::max(whole, best));
+  }
+}
+
 double OctreeCollisionModel::clearanceLowerBoundTree(const CheckScratch& scratch) const {
   return std::min(
       detail::clearanceLowerBoundTree(parts_->links, parts_->environment.tree, scratch.robot),

@@ -124,6 +124,12 @@ void CollisionBackend::explainContacts(const double* q, std::size_t q_size,
   }
 }
 
+void CollisionBackend::motionClearances(BackendScratch& scratch, const double* /*caps*/,
+                                        double* per_link) const {
+  const double c = motionClearance(scratch);
+  for (int l = 0; l < robot().linkCount(); ++l) per_link[l] = c;
+}
+
 bool CollisionBackend::poseForExplain(const RobotModel& robot, const double* q, std::size_t q_size,
                                       const Eigen::Isometry3d& X_WB, RobotData& data,
                                       StateExplanation& explanation) {

@@ -215,6 +215,27 @@ double FclCollisionModel::environmentDistance(Scratch& s, double cap) const {
   return query.best;
 }
 
+void FclCollisionModel::motionClearances(BackendScratch& scratch, const double* caps,
+                                         double* per_link) const {
+  Scratch& s = scratchOf(scratch);
+  for (int l = 0; l < robot_.linkCount(); ++l) {
+    per_link[l] = std::numeric_limits<double>::infinity();
+  }
+  if (geometry_->environment.empty()) return;
+  for (std::size_t e = 0; e < s.robot.objects.size(); ++e) {
+    const int link = geometry_->robot.elementLink(e);
+    if (caps[link] <= 0 || per_link[link] <= 0) continue;
+    DistanceQuery query;
+    query.best = std::min(per_link[link], caps[link]);
+    geometry_->environment_manager.distance(&s.robot.objects[e], &query, distanceNarrowPhase);
+    per_link[link] = std::min(per_link[link], query.best);
+  }
+}
+
+const RobotData* FclCollisionModel::posedRobot(BackendScratch& scratch) const {
+  return &scratchOf(scratch).robot.robot;
+}
+
 void FclCollisionModel::explainContacts(const double* q, std::size_t q_size,
                                         const Eigen::Isometry3d& X_WB, BackendScratch& scratch,
                                         bool all, StateExplanation& explanation) const {

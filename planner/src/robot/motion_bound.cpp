@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstddef>
 #include <functional>
+#include <limits>
 #include <string>
 #include <variant>
 
@@ -96,6 +97,14 @@ LinkMotionBound::LinkMotionBound(const RobotModel& robot, bool keep_mesh_root_tr
   levers_.assign(static_cast<std::size_t>(link_count_) * static_cast<std::size_t>(variable_count_),
                  0.0);
   CollisionMeshes meshes(keep_mesh_root_transform, center_mesh_vertices);
+  spheres_.resize(static_cast<std::size_t>(link_count_));
+  // Per link, each movable joint on its path from the root with its lever (times the mimic
+  // multiplier) and variable: the self pairs' levers are sums of these.
+  struct JointLever {
+    int joint, variable;
+    double lever;
+  };
+  std::vector<std::vector<JointLever>> joint_levers(static_cast<std::size_t>(link_count_));
   for (int l = 0; l < link_count_; ++l) {
     Points points = linkPoints(robot.link(l), meshes);
     for (const CarriedPoints& c : carried) {
@@ -103,6 +112,7 @@ LinkMotionBound::LinkMotionBound(const RobotModel& robot, bool keep_mesh_root_tr
     }
     if (points.empty()) continue;
     geometry_links_.push_back(l);
+    spheres_[static_cast<std::size_t>(l)] = makeSpheres(points);
     // The joints from the root down to the link.
     std::vector<int> path;
     for (int j = robot.link(l).parent_joint; j >= 0;
@@ -130,8 +140,86 @@ LinkMotionBound::LinkMotionBound(const RobotModel& robot, bool keep_mesh_root_tr
       }
       const double multiplier = joint.isMimic() ? std::abs(joint.mimic_multiplier) : 1.0;
       levers_[static_cast<std::size_t>(l * variable_count_ + variable)] += multiplier * arm;
+      joint_levers[static_cast<std::size_t>(l)].push_back({path[i], variable, multiplier * arm});
     }
   }
+  // A pair's relative motion: the joints on one link's path and not on the other's (the common
+  // ones, above the two links' common ancestor, move both rigidly). By joint, not by variable:
+  // a mimic joint moves one finger while its master moves the other.
+  pairs_ = robot.checkedPairs();
+  pair_levers_.assign(pairs_.size() * static_cast<std::size_t>(variable_count_), 0.0);
+  for (std::size_t p = 0; p < pairs_.size(); ++p) {
+    const auto& a = joint_levers[static_cast<std::size_t>(pairs_[p].first)];
+    const auto& b = joint_levers[static_cast<std::size_t>(pairs_[p].second)];
+    double* lever = pair_levers_.data() + p * static_cast<std::size_t>(variable_count_);
+    auto onPath = [](const std::vector<JointLever>& path, int joint) {
+      return std::any_of(path.begin(), path.end(),
+                         [joint](const JointLever& j) { return j.joint == joint; });
+    };
+    for (const JointLever& j : a) {
+      if (!onPath(b, j.joint)) lever[j.variable] += j.lever;
+    }
+    for (const JointLever& j : b) {
+      if (!onPath(a, j.joint)) lever[j.variable] += j.lever;
+    }
+  }
+}
+
+// Spheres that hold the hull of a link's points (its geometry): one about their box's centre
+// (radius: the farthest point; a ball is convex), and kPairSlabs about equal slices of that box
+// along its longest side (each circumscribes its slice, which holds the hull's part there).
+LinkMotionBound::Spheres LinkMotionBound::makeSpheres(const std::vector<Eigen::Vector3d>& points) {
+  Eigen::AlignedBox3d box;
+  for (const Eigen::Vector3d& p : points) box.extend(p);
+  Spheres s;
+  s.center = box.center();
+  for (const Eigen::Vector3d& p : points) s.radius = std::max(s.radius, (p - s.center).norm());
+  Eigen::Index axis = 0;
+  box.sizes().maxCoeff(&axis);
+  const double step = box.sizes()[axis] / LinkMotionBound::kPairSlabs;
+  for (int k = 0; k < LinkMotionBound::kPairSlabs; ++k) {
+    Eigen::AlignedBox3d slice = box;
+    slice.min()[axis] = box.min()[axis] + step * k;
+    slice.max()[axis] =
+        k + 1 == LinkMotionBound::kPairSlabs ? box.max()[axis] : box.min()[axis] + step * (k + 1);
+    Eigen::Vector4d sphere;
+    sphere.head<3>() = slice.center();
+    sphere[3] = 0.5 * slice.sizes().norm();
+    s.slabs.push_back(sphere);
+  }
+  return s;
+}
+
+double LinkMotionBound::pairBound(std::size_t p, const double* dq) const {
+  const double* lever = pair_levers_.data() + p * static_cast<std::size_t>(variable_count_);
+  double bound = 0.0;
+  for (int v = 0; v < variable_count_; ++v) bound += lever[v] * std::abs(dq[v]);
+  return bound;
+}
+
+double LinkMotionBound::pairDistance(std::size_t p, const RobotData& data, double cap) const {
+  const auto [a, b] = pairs_[p];
+  const Spheres& sa = spheres_[static_cast<std::size_t>(a)];
+  const Spheres& sb = spheres_[static_cast<std::size_t>(b)];
+  if (sa.slabs.empty() || sb.slabs.empty()) return cap;  // a link without geometry
+  const Eigen::Isometry3d& X_WA = data.linkPose(a);
+  const Eigen::Isometry3d& X_WB = data.linkPose(b);
+  const double whole = (X_WA * sa.center - X_WB * sb.center).norm() - sa.radius - sb.radius;
+  if (whole >= cap) return cap;
+  Eigen::Vector3d centres_b[kPairSlabs];
+  for (std::size_t j = 0; j < sb.slabs.size(); ++j) {
+    centres_b[j] = X_WB * Eigen::Vector3d(sb.slabs[j].head<3>());
+  }
+  double slabs = std::numeric_limits<double>::infinity();
+  for (const Eigen::Vector4d& s : sa.slabs) {
+    const Eigen::Vector3d c = X_WA * Eigen::Vector3d(s.head<3>());
+    for (std::size_t j = 0; j < sb.slabs.size(); ++j) {
+      slabs = std::min(slabs, (c - centres_b[j]).norm() - s[3] - sb.slabs[j][3]);
+    }
+    if (slabs <= 0) return 0.0;
+  }
+  // Both are lower bounds; a micrometre covers rounding in the transforms.
+  return std::clamp(std::max(whole, slabs) - 1e-6, 0.0, cap);
 }
 
 double LinkMotionBound::linkBound(int link, const double* dq) const {

@@ -71,6 +71,15 @@ class CollisionBackend {
   // The lower bound the certified motion validator uses (same contract as clearance, in
   // kLowerBound or kExact terms): clearance() unless the backend has a cheaper bound.
   virtual double motionClearance(BackendScratch& scratch) const { return clearance(scratch); }
+  // The same bound per link (robot link order) into per_link[robot().linkCount()]: a link's own
+  // distance to the environment, so that a link that barely moves is not held to the clearance
+  // of another. caps[l] > 0: a value at or above it may be written as caps[l]; caps[l] <= 0: the
+  // link's value is not needed (unspecified). Default: motionClearance() for every link.
+  virtual void motionClearances(BackendScratch& scratch, const double* caps,
+                                double* per_link) const;
+  // The link poses of the scratch's last query (after any of the queries above), or null when
+  // the backend keeps none.
+  virtual const RobotData* posedRobot(BackendScratch& /*scratch*/) const { return nullptr; }
 
   virtual const RobotModel& robot() const = 0;
   // Unique for the process's lifetime (nextModelId), so per-thread scratch can tell which

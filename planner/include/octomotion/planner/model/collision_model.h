@@ -403,6 +403,11 @@ class OctreeCollisionModel {
   // spheres against the environment's ClearanceGrid (one lookup each; loose by up to a grid
   // cell more). Never above clearanceLowerBoundTree's true target, the distance to the voxels.
   double clearanceLowerBoundGrid(const CheckScratch& scratch) const;
+  // The same per robot link into per_link[robot().linkCount()], each less `slack` (floored at
+  // 0); for links whose reach misses the environment's box, the gap between the two boxes.
+  // Links with caps[l] <= 0 are not computed (their value is unspecified).
+  void clearanceLowerBoundGridPerLink(const CheckScratch& scratch, const double* caps, double slack,
+                                      double* per_link) const;
 
   // Read-only view of a modelled link's source tree (in its link frame L), for viewers and
   // exports: moveTree(*source, X_WL, grid(), rounding()) is the link's placement at pose X_WL.

@@ -52,6 +52,17 @@ class OctreeBackend final : public CollisionBackend {
     if (path_ != CheckerPath::kMoveTree) return c;
     return std::max(0.0, c - std::sqrt(3.0) * model_->grid().voxelSize());
   }
+  // OctreeCollisionModel::clearanceLowerBoundGridPerLink, less the same voxel diagonal on the
+  // moveTree path.
+  void motionClearances(BackendScratch& scratch, const double* caps,
+                        double* per_link) const override {
+    const double slack =
+        path_ == CheckerPath::kMoveTree ? std::sqrt(3.0) * model_->grid().voxelSize() : 0.0;
+    model_->clearanceLowerBoundGridPerLink(scratchOf(scratch).check, caps, slack, per_link);
+  }
+  const RobotData* posedRobot(BackendScratch& scratch) const override {
+    return &scratchOf(scratch).check.robot;
+  }
 
   const RobotModel& robot() const override { return model_->robot(); }
   std::uint64_t id() const override { return model_->id(); }  // scratch depends on the model only

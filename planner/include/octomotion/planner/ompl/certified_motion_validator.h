@@ -2,18 +2,26 @@
 // resolution, by adaptive bisection (Schwarzer, Saha & Latombe, "Adaptive dynamic collision
 // checking for single and multiple articulated robots", IEEE T-RO 2005): docs/validation.md §4.
 //
-// An interval [a, b] of the edge, both ends valid, is free of the environment when the
-// path-length bound of every point of the robot over it (LinkMotionBound, robot/motion_bound.h)
-// is less than the sum of the backend's clearances at its ends (a lower bound on the distance,
-// ClearanceBound); otherwise its midpoint is checked and both halves are tried. An interval whose
-// bound is at most `resolution` is decided by its checked ends: every point of the robot then
-// stays within resolution / 2 of a pose the checker found free. Self pairs have no clearance:
-// inside an interval accepted through the clearance they are checked (selfInCollision) at states
-// at most `resolution` of travel apart, the same final resolution.
+// Link by link, an interval [a, b] of the edge, both ends valid, is free of the environment for
+// link l when l's path-length bound over it (LinkMotionBound, robot/motion_bound.h) is less
+// than the sum of l's clearances at its ends (a lower bound on its distance,
+// CollisionBackend::motionClearances). Pair by pair, it is free of self-collision when the
+// bound on the change of the pair's distance (LinkMotionBound::pairBound: only the joints that
+// move one link and not the other) is less than the sum of the pair's distance bounds at its
+// ends (LinkMotionBound::pairDistance). A link or pair whose bound over the interval is at most
+// `resolution` is decided by the checked ends: each of its points then stays within
+// resolution / 2 of a pose the checker found free (for a pair, its distance within
+// resolution / 2 of that at a checked end). Otherwise the
+// midpoint is checked (breadth first: coarse to fine, so a colliding edge fails early) and both
+// halves are tried, each knowing which links and pairs are already proven over it; a midpoint
+// needed by the self pairs alone is checked with selfInCollision. Each thread remembers the
+// last valid ends it checked (their clearances and pair distances), so an edge that starts where
+// an earlier one ended (RRTConnect's connect steps, a tree node reused) does not check it again.
 #pragma once
 
 #include <atomic>
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <utility>
@@ -32,8 +40,8 @@ namespace octomotion {
 class CertifiedMotionValidator : public ompl::base::MotionValidator {
  public:
   // `resolution` (metres, > 0): the final resolution above, usually the scene's voxel size.
-  // Throws InvalidArgument for a null backend or bound, a bound made for another robot or a
-  // resolution that is not positive and finite.
+  // Throws InvalidArgument for a null backend or bound, a bound made for another robot (or
+  // other self pairs) or a resolution that is not positive and finite.
   CertifiedMotionValidator(const ompl::base::SpaceInformationPtr& si,
                            std::shared_ptr<const CollisionBackend> backend,
                            std::shared_ptr<const LinkMotionBound> bound, double resolution);
@@ -48,8 +56,8 @@ class CertifiedMotionValidator : public ompl::base::MotionValidator {
   // The path-length bound of the whole edge: the largest over the robot's points.
   double motionBound(const ompl::base::State* s1, const ompl::base::State* s2) const;
 
-  // Counters since construction (or resetCounts): full state checks (with clearance) and
-  // self-pair-only checks.
+  // Counters since construction (or resetCounts): state checks that test the environment (with
+  // clearances) and self-pair-only checks.
   std::size_t stateChecks() const { return state_checks_.load(std::memory_order_relaxed); }
   std::size_t selfChecks() const { return self_checks_.load(std::memory_order_relaxed); }
   void resetCounts() const {
@@ -69,7 +77,7 @@ class CertifiedMotionValidator : public ompl::base::MotionValidator {
   std::shared_ptr<const CollisionBackend> backend_;
   std::shared_ptr<const LinkMotionBound> bound_;
   double resolution_;
-  bool self_pairs_;  // the robot has checked self pairs
+  std::uint64_t serial_;  // process-unique: a thread's remembered states belong to one validator
   mutable std::atomic<std::size_t> state_checks_{0};
   mutable std::atomic<std::size_t> self_checks_{0};
 };

@@ -70,6 +70,10 @@ class FclCollisionModel final : public CollisionBackend {
   bool selfInCollision(const double* q, std::size_t q_size, const Eigen::Isometry3d& X_WB,
                        BackendScratch& scratch) const override;
   double clearance(BackendScratch& scratch) const override;
+  // environmentDistance link by link, each capped at caps[l].
+  void motionClearances(BackendScratch& scratch, const double* caps,
+                        double* per_link) const override;
+  const RobotData* posedRobot(BackendScratch& scratch) const override;
   ClearanceBound clearanceBound() const override { return ClearanceBound::kExact; }
 
   // The scratch behind one made by makeBackendScratch, for the queries above (InvalidArgument for

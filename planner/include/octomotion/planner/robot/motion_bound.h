@@ -9,10 +9,18 @@
 // by angle theta (OMPL's SE(3) interpolation): at most |dt| + radius * theta, radius bounding the
 // distance of every point from the root frame's origin.
 //
+// Self pairs (RobotModel::checkedPairs): the distance between two links changes only through
+// the joints that move one of them and not the other (those above their common ancestor move
+// both rigidly); in that ancestor's frame each such joint moves the link below it by at most its
+// lever, so the distance changes by at most sum_v pairLever(p, v) |dq_v| over those joints
+// alone (pairBound); and a lower bound on the distance between the two links' geometry at a pose
+// comes from spheres that hold each link's points (pairDistance).
+//
 // The geometry is read once (meshes through CollisionMeshes with the conventions given, so the
 // points are those the collision models use); primitives by their bounding box's corners.
 #pragma once
 
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -44,6 +52,7 @@ class LinkMotionBound {
   double linkBound(int link, const double* dq) const;
   // The largest over the links with geometry.
   double maxBound(const double* dq) const;
+  const std::vector<int>& geometryLinks() const { return geometry_links_; }
   // Free-flying bodies: the largest distance of a point from the root frame's origin, over every
   // configuration of the robot's own joints (held joints included in their transforms).
   double radius() const { return radius_; }
@@ -51,7 +60,29 @@ class LinkMotionBound {
     return translation + radius_ * angle;
   }
 
+  // The robot's checked self pairs (RobotModel::checkedPairs at construction), in its order.
+  const std::vector<std::pair<int, int>>& pairs() const { return pairs_; }
+  // How much the distance between the two links of pair p can change along the straight-line
+  // motion dq (variableCount() values): the sum of the two links' path-length bounds in their
+  // common ancestor's frame; 0 when no joint moves them apart.
+  double pairBound(std::size_t p, const double* dq) const;
+  // A lower bound (>= 0) on the distance between the two links' geometry of pair p at the link
+  // poses in `data`, or `cap` when that bound is at least `cap`: spheres about the links'
+  // points (a whole-link sphere, then kPairSlabs spheres each along the link's longest side).
+  double pairDistance(std::size_t p, const RobotData& data, double cap) const;
+  static constexpr int kPairSlabs = 4;
+
  private:
+  struct Spheres {
+    Eigen::Vector3d center = Eigen::Vector3d::Zero();  // in the link frame
+    double radius = 0;
+    std::vector<Eigen::Vector4d> slabs;  // centre (link frame), radius
+  };
+  static Spheres makeSpheres(const std::vector<Eigen::Vector3d>& points);
+  std::vector<std::pair<int, int>> pairs_;
+  std::vector<double> pair_levers_;  // pair-major, per variable
+  std::vector<Spheres> spheres_;     // per link (empty slabs: no geometry)
+
   int link_count_ = 0;
   int variable_count_ = 0;
   std::vector<double> levers_;       // link-major
