@@ -21,6 +21,7 @@
 #include <ompl/base/spaces/SE3StateSpace.h>
 #include <ompl/util/Console.h>
 
+#include "link_points.h"
 #include "octomotion/octree/shapes.h"
 #include "octomotion/planner/ompl/certified_motion_validator.h"
 #include "octomotion/planner/ompl/planning_scene.h"
@@ -31,36 +32,13 @@
 namespace octomotion {
 namespace {
 
+using test::linkPoints;
+
 const std::string kSource = OCTOMOTION_SOURCE_DIR;
 const std::string kPanda = kSource + "/../shared/data/panda";
 
 std::string scenePath(const std::string& name) {
   return kSource + "/robots/scenes/" + name;
-}
-
-// At most `max_points` points of the link's geometry (every k-th mesh vertex, every corner of a
-// primitive's box), in the link frame. A point's path length is convex in the point (its speed
-// is the norm of an affine function of it), so the hull's worst points are among these.
-std::vector<Eigen::Vector3d> samplePoints(const Link& link, CollisionMeshes& meshes,
-                                          std::size_t max_points) {
-  std::vector<Eigen::Vector3d> all;
-  for (const CollisionElement& e : link.collision) {
-    if (const auto* p = std::get_if<Primitive>(&e.geometry)) {
-      const Eigen::AlignedBox3d box = boundingBox(*p, e.X_LE);
-      for (int c = 0; c < 8; ++c) {
-        all.push_back(box.corner(static_cast<Eigen::AlignedBox3d::CornerType>(c)));
-      }
-    } else {
-      for (const Eigen::Vector3d& v : meshes.get(std::get<MeshRef>(e.geometry)).vertices) {
-        all.push_back(e.X_LE * v);
-      }
-    }
-  }
-  if (all.size() <= max_points) return all;
-  std::vector<Eigen::Vector3d> some;
-  const std::size_t step = all.size() / max_points + 1;
-  for (std::size_t i = 0; i < all.size(); i += step) some.push_back(all[i]);
-  return some;
 }
 
 // For random straight-line motions in q, the polyline through FK samples of every sampled point
@@ -69,7 +47,7 @@ void expectArmBoundHolds(const RobotModel& robot, int motions, std::uint64_t see
   const LinkMotionBound bound(robot);
   CollisionMeshes meshes(false, false);
   std::vector<std::vector<Eigen::Vector3d>> points;
-  for (const Link& link : robot.links()) points.push_back(samplePoints(link, meshes, 300));
+  for (const Link& link : robot.links()) points.push_back(linkPoints(link, meshes, 300));
   std::mt19937_64 rng(seed);
   RobotData data = robot.makeData();
   const auto n = static_cast<std::size_t>(robot.variableCount());
@@ -129,7 +107,7 @@ TEST(LinkMotionBound, NoPointOfARigidBodyTravelsFartherThanItsBound) {
   const RobotModel robot = RobotModel::fromMesh(kSource + "/robots/meshes/rigid/l_piece.stl");
   const LinkMotionBound bound(robot);
   CollisionMeshes meshes(false, false);
-  const std::vector<Eigen::Vector3d> points = samplePoints(robot.link(0), meshes, 2000);
+  const std::vector<Eigen::Vector3d> points = linkPoints(robot.link(0), meshes, 2000);
   ASSERT_FALSE(points.empty());
   const Eigen::AlignedBox3d box(Eigen::Vector3d::Constant(-2), Eigen::Vector3d::Constant(2));
   auto space = makeStateSpace(robot, &box);

@@ -21,6 +21,7 @@
 #include <ompl/base/ScopedState.h>
 #include <ompl/util/Console.h>
 
+#include "link_points.h"
 #include "octomotion/octree/shapes.h"
 #include "octomotion/planner/ompl/certified_motion_validator.h"
 #include "octomotion/planner/ompl/planning_scene.h"
@@ -32,31 +33,10 @@
 namespace octomotion {
 namespace {
 
+using test::linkPoints;
+
 const std::string kSource = OCTOMOTION_SOURCE_DIR;
 const std::string kPanda = kSource + "/../shared/data/panda";
-
-// Every mesh vertex and primitive box corner of the link, in its frame, at most `max_points`.
-std::vector<Eigen::Vector3d> linkPoints(const Link& link, CollisionMeshes& meshes,
-                                        std::size_t max_points) {
-  std::vector<Eigen::Vector3d> all;
-  for (const CollisionElement& e : link.collision) {
-    if (const auto* p = std::get_if<Primitive>(&e.geometry)) {
-      const Eigen::AlignedBox3d box = boundingBox(*p, e.X_LE);
-      for (int c = 0; c < 8; ++c) {
-        all.push_back(box.corner(static_cast<Eigen::AlignedBox3d::CornerType>(c)));
-      }
-    } else {
-      for (const Eigen::Vector3d& v : meshes.get(std::get<MeshRef>(e.geometry)).vertices) {
-        all.push_back(e.X_LE * v);
-      }
-    }
-  }
-  if (all.size() <= max_points) return all;
-  std::vector<Eigen::Vector3d> some;
-  const std::size_t step = all.size() / max_points + 1;
-  for (std::size_t i = 0; i < all.size(); i += step) some.push_back(all[i]);
-  return some;
-}
 
 RobotModel octo7() {
   RobotModelOptions options;
