@@ -28,6 +28,7 @@
 #include "octomotion/planner/ompl/state_space.h"
 #include "octomotion/planner/robot/collision_meshes.h"
 #include "octomotion/planner/robot/motion_bound.h"
+#include "path_fcl.h"
 
 namespace octomotion {
 namespace {
@@ -175,20 +176,7 @@ class SceneEdges {
   }
   // Exact FCL at `states` evenly spaced states of the edge (ends included): how many collide.
   std::size_t fclCollisions(const ompl::base::State* s1, const ompl::base::State* s2, int states) {
-    const FclCollisionModel& fcl = *scene_.fclModel();
-    auto scratch = fcl.makeScratch();
-    ompl::base::ScopedState<> s(si_);
-    std::vector<double> q(static_cast<std::size_t>(fcl.robot().variableCount()));
-    Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
-    std::size_t colliding = 0;
-    for (int k = 0; k < states; ++k) {
-      si_->getStateSpace()->interpolate(s1, s2, k / double(states - 1), s.get());
-      if (!stateToConfiguration(fcl.robot(), s.get(), q, X))
-        return static_cast<std::size_t>(states);
-      fcl.setConfiguration(q.data(), q.size(), X, *scratch);
-      colliding += fcl.inCollision(*scratch) ? 1 : 0;
-    }
-    return colliding;
+    return test::fclCollisionsOnEdge(*scene_.fclModel(), si_, s1, s2, states);
   }
 
  private:
@@ -297,25 +285,16 @@ INSTANTIATE_TEST_SUITE_P(Scenes, CertifiedMotion,
                          ::testing::Values("bookshelf.yaml", "narrow_passage.yaml"));
 
 // A path planned with the certified validator, re-checked by exact FCL at 100 times its
-// states' density, and by the certified validator edge by edge.
+// states' density.
 void expectPlannedPathFree(PlanningScene& scene) {
   ASSERT_TRUE(dynamic_cast<const CertifiedMotionValidator*>(
       scene.setup->getSpaceInformation()->getMotionValidator().get()));
   const PlanResult result = plan(scene);
   ASSERT_TRUE(result.solved);
-  ompl::geometric::PathGeometric dense(*result.path);
-  dense.interpolate(static_cast<unsigned>(100 * (result.path->getStateCount() - 1) + 1));
-  const FclCollisionModel& fcl = *scene.fclModel();
-  auto scratch = fcl.makeScratch();
-  std::vector<double> q(static_cast<std::size_t>(fcl.robot().variableCount()));
-  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
-  std::size_t colliding = 0;
-  for (std::size_t i = 0; i < dense.getStateCount(); ++i) {
-    ASSERT_TRUE(stateToConfiguration(fcl.robot(), dense.getState(static_cast<unsigned>(i)), q, X));
-    fcl.setConfiguration(q.data(), q.size(), X, *scratch);
-    colliding += fcl.inCollision(*scratch) ? 1 : 0;
-  }
-  EXPECT_EQ(colliding, 0u) << "of " << dense.getStateCount() << " states";
+  std::size_t checked = 0;
+  const std::size_t colliding =
+      test::fclCollisionsOnPath(*scene.fclModel(), *result.path, 100, &checked);
+  EXPECT_EQ(colliding, 0u) << "of " << checked << " states";
 }
 
 TEST(CertifiedMotionPlanning, ShippedArmAndRigidScenesPlanFreePaths) {

@@ -29,6 +29,7 @@
 #include "octomotion/planner/reference/fcl_collision_model.h"
 #include "octomotion/planner/robot/collision_meshes.h"
 #include "octomotion/planner/robot/motion_bound.h"
+#include "path_fcl.h"
 
 namespace octomotion {
 namespace {
@@ -265,19 +266,7 @@ class PandaAlone : public ::testing::Test {
     } while (!si_->isValid(s));
   }
   std::size_t fclCollisions(const ompl::base::State* s1, const ompl::base::State* s2, int states) {
-    const FclCollisionModel& fcl = *scene_.fclModel();
-    auto scratch = fcl.makeScratch();
-    ompl::base::ScopedState<> s(si_);
-    std::vector<double> q(static_cast<std::size_t>(fcl.robot().variableCount()));
-    Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
-    std::size_t colliding = 0;
-    for (int k = 0; k < states; ++k) {
-      si_->getStateSpace()->interpolate(s1, s2, k / double(states - 1), s.get());
-      stateToConfiguration(fcl.robot(), s.get(), q, X);
-      fcl.setConfiguration(q.data(), q.size(), X, *scratch);
-      colliding += fcl.inCollision(*scratch) ? 1 : 0;
-    }
-    return colliding;
+    return test::fclCollisionsOnEdge(*scene_.fclModel(), si_, s1, s2, states);
   }
 
   std::mt19937_64 rng_{31};

@@ -27,6 +27,7 @@
 #include "octomotion/planner/ompl/planning_scene.h"
 #include "octomotion/planner/ompl/state_space.h"
 #include "octomotion/tools/building_scene.h"
+#include "path_fcl.h"
 
 namespace octomotion {
 namespace {
@@ -155,20 +156,10 @@ TEST(LargeRigid, TheGeneratedBuildingIsPlannedAndFclFindsThePathFree) {
 
   const PlanResult result = plan(scene);
   ASSERT_TRUE(result.solved);
-  ompl::geometric::PathGeometric dense(*result.path);
-  dense.interpolate(static_cast<unsigned>(100 * (result.path->getStateCount() - 1) + 1));
-  const FclCollisionModel& fcl = *scene.fclModel();
-  auto scratch = fcl.makeScratch();
-  std::vector<double> q;
-  Eigen::Isometry3d X_WB = Eigen::Isometry3d::Identity();
-  std::size_t colliding = 0;
-  for (std::size_t i = 0; i < dense.getStateCount(); ++i) {
-    ASSERT_TRUE(
-        stateToConfiguration(fcl.robot(), dense.getState(static_cast<unsigned>(i)), q, X_WB));
-    fcl.setConfiguration(q.data(), q.size(), X_WB, *scratch);
-    colliding += fcl.inCollision(*scratch) ? 1 : 0;
-  }
-  EXPECT_EQ(colliding, 0u) << "of " << dense.getStateCount() << " states";
+  std::size_t checked = 0;
+  const std::size_t colliding =
+      test::fclCollisionsOnPath(*scene.fclModel(), *result.path, 100, &checked);
+  EXPECT_EQ(colliding, 0u) << "of " << checked << " states";
 }
 
 }  // namespace
