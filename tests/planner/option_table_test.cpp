@@ -24,10 +24,7 @@ std::vector<std::string> parseAll(const OptionTable<Target>& table,
   std::vector<std::string> rest;
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& arg = args[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= args.size()) throw InvalidArgument(arg + ": missing value");
-      return args[++i];
-    };
+    auto value = [&] { return tools::flagValue(args, i); };
     if (!table.parse(arg, value, target)) rest.push_back(arg);
   }
   return rest;

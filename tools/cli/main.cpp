@@ -57,12 +57,10 @@ struct Args {
 Args parseArgs(int argc, char** argv) {
   Args a;
   std::vector<std::string> positional;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) throw InvalidArgument(arg + ": missing value");
-      return argv[++i];
-    };
+  const std::vector<std::string> args(argv + 1, argv + argc);
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& arg = args[i];
+    auto value = [&] { return tools::flagValue(args, i); };
     if (cli::parseSceneOption(arg, value, a.overrides)) {
       continue;
     } else if (arg == "--out") {

@@ -37,10 +37,7 @@ int makeBuildingCommand(const std::vector<std::string>& args) {
   std::string dir;
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& arg = args[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= args.size()) throw InvalidArgument(arg + ": missing value");
-      return args[++i];
-    };
+    auto value = [&] { return tools::flagValue(args, i); };
     if (arg == "-h" || arg == "--help") {
       std::cout << kMakeBuildingUsage;
       return 0;

@@ -17,6 +17,11 @@ double parseNumber(const std::string& flag, const std::string& value) {
   return v;
 }
 
+std::string flagValue(const std::vector<std::string>& args, std::size_t& i) {
+  if (i + 1 >= args.size()) throw InvalidArgument(args[i] + ": missing value");
+  return args[++i];
+}
+
 std::size_t parseCount(const std::string& flag, const std::string& value) {
   const double v = parseNumber(flag, value);
   if (v < 0 || v != std::floor(v) || v > 1e9) {

@@ -85,6 +85,10 @@ class OptionTable {
   std::vector<Option<Target>> options_;
 };
 
+// The value after the flag args[i]: advances i past it, or throws InvalidArgument naming the
+// flag when the arguments end first. Commands wrap it as their options' `value` callback.
+std::string flagValue(const std::vector<std::string>& args, std::size_t& i);
+
 // Values. Each throws InvalidArgument naming the flag.
 double parseNumber(const std::string& flag, const std::string& value);      // finite
 std::size_t parseCount(const std::string& flag, const std::string& value);  // whole, <= 1e9
