@@ -193,7 +193,11 @@ struct CollisionModelOptions {
   // The FCL geometry of the robot and of every object is built with the model. Certain contacts
   // (core_boxes) and static folding (fold_static) prove a shared voxel, not an exact contact, so
   // they are off in this mode. World updates are refused.
-  RefineMode refine = RefineMode::kNone;
+  // kAuto (the default; resolveRefineMode): kExact under conservative rounding, kNone under
+  // centre rounding or with fit_universe_to_reach (a world that changes). A conservative 1 cm
+  // model without it rejects free states up to two voxel diagonals from contact (a grasp a few
+  // millimetres from an object, most of an arm's near self pairs): docs/trade-off.md.
+  RefineMode refine = RefineMode::kAuto;
   // RefineMode::kExact: clearanceLowerBound returns FCL's exact distance to the environment when
   // the octree's bound is below this (metres), else the octree's bound.
   double refine_clearance_margin = 0.05;
@@ -268,7 +272,7 @@ struct CollisionModelReport {
   std::vector<std::string> static_links;
   std::vector<std::pair<std::string, std::string>> constant_pairs;
   std::vector<std::string> static_collisions;
-  RefineMode refine = RefineMode::kNone;  // CollisionModelOptions::refine
+  RefineMode refine = RefineMode::kNone;  // CollisionModelOptions::refine, resolved
   double refine_build_seconds = 0;        // the FCL geometry of RefineMode::kExact
   double build_seconds = 0;
   std::string toString() const;  // the human-readable "what was modelled" summary
