@@ -85,6 +85,7 @@ std::size_t unrefinedFalsePositives(const PlanningScene& refined,
   options.base_position_bounds = refined.spec.problem.bounds;
   options.keep_mesh_root_transform = refined.spec.robot.keep_mesh_root_transform;
   options.center_mesh_vertices = refined.spec.robot.center_mesh_vertices;
+  options.refine = RefineMode::kNone;  // the default (auto) would refine too
   const auto plain = std::make_shared<const OctreeCollisionModel>(refined.model->robot(),
                                                                   *refined.environment, options);
   const OctreeBackend checked(plain, CheckerPath::kFused);
