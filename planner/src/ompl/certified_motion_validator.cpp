@@ -303,6 +303,19 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
                     t.distance.data() + in.slot_b * pairs, in.b - in.a, in.pairs_done);
   };
 
+  // Exact answers: the last valid state reported is a proven interval's end at least the minimum
+  // travel from contact (every active link and pair), so that an edge to it can be proven
+  // again; nearer ones are skipped.
+  auto clearOfContact = [&](std::size_t slot) {
+    for (std::size_t l : t.active_links) {
+      if (t.clearance[slot * stride + l] < min_travel) return false;
+    }
+    for (std::size_t p : t.active_pairs) {
+      if (t.distance[slot * pairs + p] < min_travel) return false;
+    }
+    return true;
+  };
+
   try {
     // s1 is valid by contract; its clearances are still needed (0 if it is not valid after
     // all: the slot stays zero).
@@ -375,18 +388,15 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
         open_links = unprovenLinks(in);
         open_pairs = unprovenPairs(in);
         if (open_links == 0.0 && open_pairs == 0.0) {
-          if (want_last) last_valid = in.b;
+          if (want_last && (!exact || clearOfContact(in.slot_b))) last_valid = in.b;
           continue;
         }
         // Exact answers: a link or pair still unproven when its bound over the interval is below
         // the minimum may graze an obstacle (or the other link); the edge is not proven, so it
         // is rejected, here.
-        if (exact && std::max(open_links, open_pairs) < min_travel) {
-          last_valid = in.a;
-          return false;
-        }
+        if (exact && std::max(open_links, open_pairs) < min_travel) return false;
       } else if (max_bound * s <= resolution_) {
-        last_valid = in.a;
+        if (!exact) last_valid = in.a;
         return false;
       }
       // Voxel answers: halves at the final resolution are decided by their ends, no clearance

@@ -63,7 +63,8 @@ class CertifiedMotionValidator : public ompl::base::MotionValidator {
   // s1 is assumed valid (OMPL's contract); s2 is checked. Const and thread-safe.
   bool checkMotion(const ompl::base::State* s1, const ompl::base::State* s2) const override;
   // On failure, lastValid.second is the end of the part of the edge proven free from s1 (its
-  // state written to lastValid.first when not null).
+  // state written to lastValid.first when not null); for exact answers, the last end of a proven
+  // interval whose links and pairs are at least kExactMinTravel * resolution from contact.
   bool checkMotion(const ompl::base::State* s1, const ompl::base::State* s2,
                    std::pair<ompl::base::State*, double>& lastValid) const override;
 
