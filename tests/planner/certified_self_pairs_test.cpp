@@ -249,7 +249,7 @@ TEST(MotionClearances, PerLinkOctreeBoundsStayBelowFclsExactDistances) {
       EXPECT_LE(capped[l], exact[l] + 1e-9) << robot.link(static_cast<int>(l)).name;
       // Exact refine: FCL's distance where below the cap (its own GJK tolerance aside).
       EXPECT_LE(refined_capped[l], exact[l] + 1e-5) << robot.link(static_cast<int>(l)).name;
-      if (exact[l] < 0.05 - 1e-5) {
+      if (exact[l] < 0.02 - 1e-5) {  // near contact (two voxels): FCL's own distance
         EXPECT_NEAR(refined_capped[l], exact[l], 1e-5) << robot.link(static_cast<int>(l)).name;
       }
       positive += bound[l] > 0 ? 1 : 0;

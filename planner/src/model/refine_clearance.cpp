@@ -36,9 +36,15 @@ double refineLinkDistance(const RefineData& data, RefineScratch& r, const RobotD
 void OctreeCollisionModel::refineClearancesPerLink(const CheckScratch& scratch, const double* caps,
                                                    double* per_link) const {
   if (!refine_) return;
+  // Farther than two voxels the grid's bound is within its own looseness of the distance, and
+  // FCL's distance (a BVH traversal per element) is what costs: the bound stands there.
+  const double near = 2 * grid().voxelSize();
   detail::RefineScratch* r = nullptr;  // made on the first link that needs FCL
   for (int l = 0; l < robot_.linkCount(); ++l) {
-    if (caps[l] <= 0 || per_link[l] >= caps[l] || !robot_.link(l).hasCollision()) continue;
+    if (caps[l] <= 0 || per_link[l] >= caps[l] || per_link[l] >= near ||
+        !robot_.link(l).hasCollision()) {
+      continue;
+    }
     if (r == nullptr) r = &detail::refineScratch(*refine_, robot_, id_, scratch.refine);
     per_link[l] = detail::refineLinkDistance(*refine_, *r, scratch.robot, l, caps[l]);
   }

@@ -208,13 +208,20 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
   max_bound = std::max(max_link, max_pair);
   // Exact answers: the travel below which an unproven interval rejects the edge.
   const double min_travel = resolution_ * kExactMinTravel;
-  // Clearances above what an evaluated state's intervals need decide nothing more: capped (FCL
-  // stops early). An end bounds intervals of the whole edge at most, a midpoint of [a, b]
-  // intervals of half its length: `cap_scale` of the whole edge's bounds.
-  t.caps.assign(links, 0.0);
-  auto setCaps = [&](double cap_scale) {
-    for (std::size_t l : t.active_links) t.caps[l] = t.link_bound[l] * cap_scale;
+  // What an evaluated state's clearance (distance) of the k-th active link (pair) i must reach,
+  // above which it decides nothing more: capped there, so FCL and the grid stop early. At an
+  // end (no interval), the whole edge's bound. At the midpoint of [a, b] (bound B there), enough
+  // to prove both halves at once, B / 2 - min(value at a, value at b), plus B / 1024; 0 (not
+  // computed) for one already proven over [a, b].
+  auto capOf = [&](const Scratch::Interval* in, std::size_t k, std::size_t i, double whole,
+                   const std::vector<double>& values, std::size_t width, std::uint64_t done) {
+    if (!in) return whole;
+    if (k < 64 && (done >> k & 1)) return 0.0;
+    const double b = whole * (in->b - in->a);
+    const double lo = std::min(values[in->slot_a * width + i], values[in->slot_b * width + i]);
+    return std::max(0.5 * b - lo, 0.0) + b / 1024;
   };
+  t.caps.assign(links, 0.0);
   const bool direct = !robot.isFreeFlying();  // q(t) without OMPL's interpolation
   const ob::SpaceInformation* si = si_;
   if (!direct) t.useSpace(si->getStateSpace());
@@ -225,8 +232,8 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
   // Checks the state at t_edge into a new slot: the environment and/or the self pairs, then
   // the active links' clearances and the active pairs' distances when asked.
   // A slot's values stay 0 when its state is invalid.
-  auto evaluate = [&](double t_edge, double cap_scale, bool environment, bool self, bool clearances,
-                      bool distances, std::size_t& slot) {
+  auto evaluate = [&](double t_edge, const Scratch::Interval* in, bool environment, bool self,
+                      bool clearances, bool distances, std::size_t& slot) {
     (environment ? state_checks_ : self_checks_).fetch_add(1, std::memory_order_relaxed);
     slot = t.clearance.size() / stride;
     t.clearance.resize(t.clearance.size() + stride, 0.0);
@@ -253,7 +260,10 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
                               : backend.selfInCollision(t.q.data(), n, t.X_WB, scratch);
     if (collides) return false;
     if (environment && clearances && has_clearance) {
-      setCaps(cap_scale);
+      for (std::size_t k = 0; k < t.active_links.size(); ++k) {
+        const std::size_t l = t.active_links[k];
+        t.caps[l] = capOf(in, k, l, t.link_bound[l], t.clearance, stride, in ? in->links_done : 0);
+      }
       backend.motionClearances(scratch, t.caps.data(), t.clearance.data() + slot * stride);
     }
     if (self && distances && !t.active_pairs.empty()) {
@@ -264,10 +274,15 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
         posed = &t.data;
       }
       double* d = t.distance.data() + slot * pairs;
-      for (std::size_t p : t.active_pairs) {
-        const double cap = t.pair_bound[p] * cap_scale;
+      for (std::size_t k = 0; k < t.active_pairs.size(); ++k) {
+        const std::size_t p = t.active_pairs[k];
+        const double cap =
+            capOf(in, k, p, t.pair_bound[p], t.distance, pairs, in ? in->pairs_done : 0);
+        if (cap <= 0) continue;
         d[p] = bound_->pairDistance(p, *posed, cap);
-        if (exact && d[p] < cap) {  // the spheres' bound is too small: the links' own distance
+        // The spheres' bound is too small and near contact: the links' own distance (farther,
+        // FCL's distance costs more than the bisection the looser bound asks for).
+        if (exact && d[p] < cap && d[p] < kExactNear * resolution_) {
           const auto& [link_a, link_b] = bound_->pairs()[p];
           d[p] = std::max(d[p], backend.linkPairDistance(scratch, link_a, link_b, cap));
         }
@@ -350,7 +365,9 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
           return true;
         }
       }
-      if (!evaluate(t_edge, 1.0, true, true, need_clearance, need_distance, slot)) return false;
+      if (!evaluate(t_edge, nullptr, true, true, need_clearance, need_distance, slot)) {
+        return false;
+      }
       r.validator = serial_;
       r.key = t.key;
       r.clearance.assign(stride, kUnknown);
@@ -406,7 +423,7 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
       const double m = 0.5 * (in.a + in.b);
       std::size_t sm = 0;
       const bool m_valid =
-          evaluate(m, 0.5 * s, environment || !self, self, 0.5 * max_link * s > decided_by_ends,
+          evaluate(m, &in, environment || !self, self, 0.5 * max_link * s > decided_by_ends,
                    0.5 * max_pair * s > decided_by_ends, sm);
       if (!m_valid && !want_last) return false;
       const Interval left{in.a, m, in.slot_a, sm, m_valid, in.links_done, in.pairs_done};

@@ -52,6 +52,9 @@ class CertifiedMotionValidator : public ompl::base::MotionValidator {
   // than that is rejected, and bisecting there costs about two checks per halving of the
   // edge's bound down to it.
   static constexpr double kExactMinTravel = 1.0 / 16;
+  // Exact answers: a self pair's exact distance (CollisionBackend::linkPairDistance) is asked
+  // only where its sphere bound is below this many resolutions (and below what is needed).
+  static constexpr double kExactNear = 2.0;
 
   // `resolution` (metres, > 0): the final resolution above, usually the scene's voxel size.
   // Throws InvalidArgument for a null backend or bound, a bound made for another robot (or
