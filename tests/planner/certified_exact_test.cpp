@@ -45,15 +45,16 @@ class CertifiedExact : public ::testing::TestWithParam<Case> {
     std::string path = kSource + "/robots/scenes/bookshelf.yaml";
     if (GetParam().mbm) {
       const std::string panda = test::MbmProblems::panda();
-      if (problems_.problems().empty() || !std::filesystem::exists(panda + "/panda.urdf")) {
+      const test::MbmProblems& problems = mbm();
+      if (problems.problems().empty() || !std::filesystem::exists(panda + "/panda.urdf")) {
         GTEST_SKIP() << "no MotionBenchMaker problems or Panda under ../shared/data";
       }
       test::MbmProblem problem;
-      for (const test::MbmProblem& p : problems_.firstOfEachSet()) {
+      for (const test::MbmProblem& p : problems.firstOfEachSet()) {
         if (p.set == "box_panda") problem = p;
       }
       ASSERT_FALSE(problem.scene.empty());
-      path = problems_.folder() + "/exact.yaml";
+      path = problems.folder() + "/exact.yaml";
       std::ofstream(path) << "robot: {urdf: " << panda << "/panda.urdf, srdf: " << panda
                           << "/panda.srdf}\nenvironment:\n  - moveit_scene: " << problem.scene
                           << "\nproblem: {moveit_request: " << problem.request << "}\n";
@@ -146,7 +147,11 @@ class CertifiedExact : public ::testing::TestWithParam<Case> {
   }
   std::vector<double> gradient_;  // of sampleAtContact's last contact
 
-  test::MbmProblems problems_;
+  // Extracted once per program.
+  static const test::MbmProblems& mbm() {
+    static const test::MbmProblems problems;
+    return problems;
+  }
   PlanningScene scene_;
   ompl::base::SpaceInformationPtr si_;
   std::shared_ptr<const FclCollisionModel> fcl_;
@@ -162,7 +167,7 @@ TEST_P(CertifiedExact, AcceptedEdgesNearObstaclesAreFreeForFclAndCollidingOnesAr
   const double reach = 0.15 * si_->getMaximumExtent();
   ompl::base::ScopedState<> s1(si_), s2(si_), mid(si_);
   int accepted = 0, midpoint_colliding = 0;
-  for (int k = 0; k < 30; ++k) {
+  for (int k = 0; k < 20; ++k) {
     sampleNearObstacle(s1.get());
     sampleFreeNear(s1.get(), reach, s2.get());
     si_->getStateSpace()->interpolate(s1.get(), s2.get(), 0.5, mid.get());
@@ -192,7 +197,7 @@ TEST_P(CertifiedExact, ShortEdgesThroughAContactAreRejected) {
   std::vector<double> q(static_cast<std::size_t>(robot.variableCount())), q1(q), q2(q);
   Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
   int grazing = 0;
-  for (int k = 0; k < 15; ++k) {
+  for (int k = 0; k < 8; ++k) {
     if (!sampleAtContact(*validator, resolution, contact.get())) continue;
     ASSERT_TRUE(stateToConfiguration(robot, contact.get(), q, X));
     for (int j = 0; j < 10; ++j) {
