@@ -39,6 +39,7 @@ int run(int argc, char** argv) {
   }
   SceneOverrides overrides;
   overrides.resolution = resolution;
+  overrides.refine = RefineMode::kNone;  // the voxels' check, false positives included
   if (self_ratio != 1.0) overrides.self_link_resolution = resolution * self_ratio;
   overrides.require_free_start_goal = false;  // uniform states, not the problem
   const PlanningScene scene = loadPlanningScene(argv[1], overrides);

@@ -69,6 +69,7 @@ void BM_Clearance(benchmark::State& state) {
   const EnvironmentGeometry env = EnvironmentGeometry::load(scene(cloud));
   CollisionModelOptions o;
   o.resolution = 0.01;
+  o.refine = RefineMode::kNone;  // the octree's own bound
   o.clearance = method;
   const OctreeCollisionModel model(robot, env, o);
   // Free states, FK done up front; each iteration swaps one into the scratch.

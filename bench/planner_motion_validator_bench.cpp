@@ -1,7 +1,8 @@
 // Motion validators on the Panda MotionBenchMaker problems (../shared/data/mbm_panda, the first
 // problem of each of the 7 sets, each read straight from its MoveIt scene and request with the
 // Panda of ../shared/data/panda): the certified validator against OMPL's discrete one at the
-// step boundMotionStep sets, over the octree (fused) checker and exact FCL. Each benchmark checks
+// step boundMotionStep sets, over the octree (fused) checker at the defaults (exact refine) and
+// with the voxels alone (refine none), and exact FCL. Each benchmark checks
 // the same edges (per problem, 40 from a valid state toward a uniform one, at most RRTConnect's
 // default range of 0.2 x the space's extent, ending valid) in each iteration; edges per second
 // are `items_per_second`, and
@@ -64,7 +65,8 @@ struct Problem {
 };
 
 // One scene per problem and checker: the validators are swapped on its SpaceInformation.
-std::vector<Problem> loadProblems(const test::MbmProblems& set, CheckerKind checker) {
+std::vector<Problem> loadProblems(const test::MbmProblems& set, CheckerKind checker,
+                                  RefineMode refine) {
   std::vector<Problem> out;
   const std::string panda = test::MbmProblems::panda();
   std::mt19937_64 rng(1);
@@ -75,6 +77,7 @@ std::vector<Problem> loadProblems(const test::MbmProblems& set, CheckerKind chec
                         << "\nproblem: {moveit_request: " << p.request << ", seed: 1}\n";
     SceneOverrides overrides;
     overrides.checker = checker;
+    overrides.refine = refine;
     Problem problem;
     problem.scene = std::make_shared<PlanningScene>(
         loadPlanningScene(path, overrides, [](const std::string&) {}));
@@ -113,12 +116,12 @@ struct Setup {
   std::vector<std::shared_ptr<ob::DiscreteMotionValidator>> discrete;
 };
 
-const Setup& setupFor(const test::MbmProblems& set, CheckerKind checker) {
-  static std::map<CheckerKind, Setup> setups;
-  auto it = setups.find(checker);
+const Setup& setupFor(const test::MbmProblems& set, CheckerKind checker, RefineMode refine) {
+  static std::map<std::pair<CheckerKind, RefineMode>, Setup> setups;
+  auto it = setups.find({checker, refine});
   if (it != setups.end()) return it->second;
   Setup s;
-  s.problems = loadProblems(set, checker);
+  s.problems = loadProblems(set, checker, refine);
   for (Problem& p : s.problems) {
     const ob::SpaceInformationPtr& si = p.scene->setup->getSpaceInformation();
     const std::shared_ptr<const CollisionBackend> backend = checkerBackend(*p.scene);
@@ -132,10 +135,11 @@ const Setup& setupFor(const test::MbmProblems& set, CheckerKind checker) {
         *p.scene->spec.octree.resolution));
     s.discrete.push_back(std::make_shared<ob::DiscreteMotionValidator>(si));
   }
-  return setups.emplace(checker, std::move(s)).first->second;
+  return setups.emplace(std::make_pair(checker, refine), std::move(s)).first->second;
 }
 
-void run(benchmark::State& state, CheckerKind checker, MotionValidatorKind kind) {
+void run(benchmark::State& state, CheckerKind checker, MotionValidatorKind kind,
+         RefineMode refine = RefineMode::kAuto) {
   ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
   static const test::MbmProblems set;
   if (set.problems().empty() ||
@@ -143,7 +147,7 @@ void run(benchmark::State& state, CheckerKind checker, MotionValidatorKind kind)
     state.SkipWithError("no MotionBenchMaker problems or Panda under ../shared/data");
     return;
   }
-  const Setup& s = setupFor(set, checker);
+  const Setup& s = setupFor(set, checker, refine);
   for (std::size_t i = 0; i < s.problems.size(); ++i) {
     s.counters[i]->checks = 0;
     s.certified[i]->resetCounts();
@@ -183,6 +187,10 @@ void run(benchmark::State& state, CheckerKind checker, MotionValidatorKind kind)
 BENCHMARK_CAPTURE(run, octree_certified, CheckerKind::kOctreeFused, MotionValidatorKind::kCertified)
     ->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(run, octree_discrete, CheckerKind::kOctreeFused, MotionValidatorKind::kDiscrete)
+    ->Unit(benchmark::kMicrosecond);
+// The voxels alone (refine none), whose answers the validator decides at a voxel of travel.
+BENCHMARK_CAPTURE(run, octree_none_certified, CheckerKind::kOctreeFused,
+                  MotionValidatorKind::kCertified, RefineMode::kNone)
     ->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(run, fcl_certified, CheckerKind::kFcl, MotionValidatorKind::kCertified)
     ->Unit(benchmark::kMicrosecond);

@@ -70,6 +70,7 @@ int run(int argc, char** argv) {
   for (const bool tables : {false, true}) {
     CollisionModelOptions options;
     options.resolution = resolution;
+    options.refine = RefineMode::kNone;  // the tables against the voxels alone
     options.link_resolution = resolution * link_ratio;
     options.self_link_resolution = resolution * self_ratio;
     options.X_WB = scene.model->baseMount();

@@ -7,7 +7,7 @@
 # Sections: differential motion octree builders translate primitive_contact planner_environment
 #           planner_selfcollision planner_clearance pointoctree self_pair_tables check_breakdown
 #           plan_split validity_checker broadphase world_updates refine motion_validator
-#           tradeoff python_check_many bench_set_mbm bench_set_rigid
+#           tradeoff python_check_many bench_set_mbm bench_set_rigid defaults
 # Environment: OCTOMOTION_DIFFERENTIAL_STATES (default 1000000).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -20,7 +20,7 @@ out=$root/docs/benchmarks.md
 all=(differential motion octree builders translate primitive_contact planner_environment
   planner_selfcollision planner_clearance pointoctree self_pair_tables check_breakdown plan_split
   validity_checker broadphase world_updates refine motion_validator tradeoff python_check_many
-  bench_set_mbm bench_set_rigid)
+  bench_set_mbm bench_set_rigid defaults)
 selected=("$@")
 ((${#selected[@]})) || selected=("${all[@]}")
 
@@ -64,6 +64,8 @@ add bench_set_mbm "Planning on the MotionBenchMaker Panda problems (octomotion b
   octomotion ""
 add bench_set_rigid "Planning rigid bodies, a generated building included (octomotion bench-set)" \
   octomotion ""
+add defaults "The defaults against the voxels alone, MotionBenchMaker Panda problems (docs/trade-off.md)" \
+  octomotion ""
 
 # A Python bench: its target is the extension, its program a script run by the module's interpreter.
 add python_check_many "Python check_many against the C++ per-state time (python_check_many_bench.py)" \
@@ -89,6 +91,14 @@ for s in "${selected[@]}"; do
   if [[ $s == bench_set_* ]]; then  # a command over a problem set, not a bench program
     echo "write_benchmarks: $s" >&2
     "$root/scripts/$s.sh" "$build" "$tmp/$s.body"
+    printf '<!-- section %s -->\n## %s\n\n%s\n\n' "$s" "${title[$s]}" "$stamp" >"$tmp/$s.md"
+    cat "$tmp/$s.body" >>"$tmp/$s.md"
+    echo "<!-- end $s -->" >>"$tmp/$s.md"
+    continue
+  fi
+  if [[ $s == defaults ]]; then  # two bench-set runs and a bench program
+    echo "write_benchmarks: $s" >&2
+    "$root/scripts/bench_defaults_mbm.sh" "$build" "$tmp/$s.body"
     printf '<!-- section %s -->\n## %s\n\n%s\n\n' "$s" "${title[$s]}" "$stamp" >"$tmp/$s.md"
     cat "$tmp/$s.body" >>"$tmp/$s.md"
     echo "<!-- end $s -->" >>"$tmp/$s.md"

@@ -205,11 +205,22 @@ TEST(PairDistanceBound, NeverExceedsFclsDistanceOnThePanda) {
 
 // Per link, the clearances the certified validator reads (CollisionBackend::motionClearances):
 // FCL's are exact (their least is FCL's distance of the whole robot) and the octree's, with and
-// without a cap, never exceed them (bookshelf, octo7 among boxes, random valid states).
+// without a cap, never exceed them (bookshelf, octo7 among boxes, random valid states): the
+// voxels' bounds (refine none), and exact refine's, which are FCL's distances below the cap.
 TEST(MotionClearances, PerLinkOctreeBoundsStayBelowFclsExactDistances) {
   ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
-  PlanningScene scene = loadPlanningScene(kSource + "/robots/scenes/bookshelf.yaml");
+  SceneOverrides voxels, exact_refine;
+  voxels.refine = RefineMode::kNone;
+  exact_refine.refine = RefineMode::kExact;
+  PlanningScene scene = loadPlanningScene(kSource + "/robots/scenes/bookshelf.yaml", voxels);
+  PlanningScene refined =
+      loadPlanningScene(kSource + "/robots/scenes/bookshelf.yaml", exact_refine);
   const std::shared_ptr<const CollisionBackend> octree = checkerBackend(scene);
+  const std::shared_ptr<const CollisionBackend> refine = checkerBackend(refined);
+  EXPECT_FALSE(octree->exactAnswers());
+  EXPECT_TRUE(refine->exactAnswers());
+  auto refine_scratch = refine->makeBackendScratch();
+  std::vector<double> refined_capped(static_cast<std::size_t>(scene.model->robot().linkCount()));
   const FclCollisionModel& fcl = *scene.fclModel();
   const RobotModel& robot = scene.model->robot();
   auto octree_scratch = octree->makeBackendScratch();
@@ -229,11 +240,18 @@ TEST(MotionClearances, PerLinkOctreeBoundsStayBelowFclsExactDistances) {
     fcl.motionClearances(*fcl_scratch, no_cap.data(), exact.data());
     octree->motionClearances(*octree_scratch, no_cap.data(), bound.data());
     octree->motionClearances(*octree_scratch, cap.data(), capped.data());
+    ASSERT_FALSE(refine->inCollision(q.data(), q.size(), X, *refine_scratch));
+    refine->motionClearances(*refine_scratch, cap.data(), refined_capped.data());
     EXPECT_NEAR(*std::min_element(exact.begin(), exact.end()), fcl.clearance(*fcl_scratch), 1e-9);
     for (std::size_t l = 0; l < links; ++l) {
       if (!robot.link(static_cast<int>(l)).hasCollision()) continue;
       EXPECT_LE(bound[l], exact[l] + 1e-9) << robot.link(static_cast<int>(l)).name;
       EXPECT_LE(capped[l], exact[l] + 1e-9) << robot.link(static_cast<int>(l)).name;
+      // Exact refine: FCL's distance where below the cap (its own GJK tolerance aside).
+      EXPECT_LE(refined_capped[l], exact[l] + 1e-5) << robot.link(static_cast<int>(l)).name;
+      if (exact[l] < 0.02 - 1e-5) {  // near contact (two voxels): FCL's own distance
+        EXPECT_NEAR(refined_capped[l], exact[l], 1e-5) << robot.link(static_cast<int>(l)).name;
+      }
       positive += bound[l] > 0 ? 1 : 0;
     }
   }

@@ -57,6 +57,7 @@ struct Fixture {
     const RobotModel robot = RobotModel::fromUrdfString(snakeUrdf(6, 1.5), "snake.urdf", ".");
     CollisionModelOptions o;
     o.resolution = kResolution;
+    o.refine = RefineMode::kNone;  // the voxels' answers
     o.clearance = ClearanceMethod::kPointOctree;
     points = std::make_unique<OctreeCollisionModel>(robot, env, o);
     o.clearance = ClearanceMethod::kEnvironmentTree;
@@ -152,6 +153,7 @@ TEST(Clearance, EmptyEnvironmentIsInfinite) {
   const RobotModel robot = RobotModel::fromUrdfString(snakeUrdf(3, 1.0), "snake.urdf", ".");
   CollisionModelOptions o;
   o.resolution = kResolution;
+  o.refine = RefineMode::kNone;  // the voxels' answers
   const OctreeCollisionModel m(robot, EnvironmentGeometry::load({}), o);
   CheckScratch scratch = m.makeScratch();
   const std::vector<double> q(static_cast<std::size_t>(robot.variableCount()), 0.0);

@@ -85,16 +85,19 @@ TEST_F(CliExplain, StartInCollisionNamesLinkAndObjectInOneLine) {
 TEST_F(CliExplain, StartWithinTheVoxelMarginSaysSo) {
   // 1 mm from the post: free for FCL, but within the auto resolution's voxels (several cm).
   const std::string scene = slabScene("near_post.yaml", 0.019);
-  const CliRun r = run("plan " + scene);
+  const CliRun r = run("plan " + scene + " --refine none");  // the voxels alone
   EXPECT_EQ(r.status, 1);
   EXPECT_EQ(lines(r.err).size(), 1u) << r.err;
   EXPECT_THAT(r.err, HasSubstr("problem.start is in collision for the octree-fused checker: "
                                "link slab with object post; the exact shapes do not touch: within "
                                "the voxel margin of resolution "));
   EXPECT_THAT(r.err, HasSubstr("try a finer --resolution"));
-  // FCL accepts the same start.
+  // FCL accepts the same start, and so do the defaults (exact refine).
   const CliRun exact = run("info " + scene + " --checker fcl");
   EXPECT_EQ(exact.status, 0) << exact.err;
+  const CliRun defaults = run("info " + scene);
+  EXPECT_EQ(defaults.status, 0) << defaults.err;
+  EXPECT_THAT(defaults.out, HasSubstr("refine exact"));
 }
 
 TEST_F(CliExplain, CheckExplainAddsAReasonColumn) {

@@ -33,7 +33,8 @@ bool expectSameEnvironmentAnswers(const RobotModel& robot, const EnvironmentGeom
   const auto states = test::uniformJointStates(robot, 1500, 9);
   CollisionModelOptions o;
   o.resolution = res;
-  o.link_resolution = res;  // the moveTree path materialises every link leaf
+  o.refine = RefineMode::kNone;  // the voxels' answers
+  o.link_resolution = res;       // the moveTree path materialises every link leaf
   const OctreeCollisionModel with(robot, env, o);
   o.core_boxes = false;
   const OctreeCollisionModel without(robot, env, o);
@@ -83,6 +84,7 @@ TEST(CoreBoxes, OnlyUnderConservativeRounding) {
   const EnvironmentGeometry env = EnvironmentGeometry::load(boards(7, false));
   CollisionModelOptions o;
   o.resolution = 0.01;
+  o.refine = RefineMode::kNone;  // the voxels' answers
   o.rounding = Rounding::kCenter;
   const OctreeCollisionModel centre(robot, env, o);
   EXPECT_EQ(centre.report().environment_solid_boxes, 0u);

@@ -20,6 +20,7 @@ namespace {
 
 PlanningScene loadScene(const std::string& name, double resolution) {
   SceneOverrides o;
+  o.refine = RefineMode::kNone;  // the voxels' own answer, link by link
   o.resolution = resolution;
   return loadPlanningScene(std::string(OCTOMOTION_SOURCE_DIR) + "/robots/scenes/" + name, o);
 }

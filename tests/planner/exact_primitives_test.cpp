@@ -87,6 +87,7 @@ TEST(ExactPrimitives, AnswerIsEveryLinkLeafAgainstEveryObject) {
        {Setting{0.02, 0.005}, Setting{0.01, 0.01}, Setting{0.005, 0.02}, Setting{0.005, 0.04}}) {
     CollisionModelOptions o;
     o.resolution = s.res;
+    o.refine = RefineMode::kNone;  // the voxels' answers
     o.link_resolution = s.link_res;
     o.exact_primitives = true;
     std::vector<std::string> warnings;
@@ -140,6 +141,7 @@ TEST(ExactPrimitives, OtherObjectsKeepTheirVoxels) {
   const auto states = test::uniformJointStates(robot, 1500, 5);
   CollisionModelOptions o;
   o.resolution = 0.01;
+  o.refine = RefineMode::kNone;  // the voxels' answers
   o.exact_primitives = true;
   std::vector<std::string> warnings;
   o.warnings = [&](const std::string& w) { warnings.push_back(w); };
@@ -179,6 +181,7 @@ TEST(ExactPrimitives, WithoutPrimitivesOrUnderCentreRoundingTheVoxelsAnswer) {
     const EnvironmentGeometry& env = rounding == Rounding::kCenter ? mixed : cubes;
     CollisionModelOptions o;
     o.resolution = 0.01;
+    o.refine = RefineMode::kNone;  // the voxels' answers
     o.rounding = rounding;
     o.exact_primitives = true;
     std::vector<std::string> warnings;

@@ -52,6 +52,14 @@ RobotModel loadPanda() {
   return robot;
 }
 
+// The voxel model's options: these tests explain the voxels' answers (refine none), which
+// name near misses within the margin as voxel contacts.
+CollisionModelOptions voxelOptions() {
+  CollisionModelOptions o;
+  o.refine = RefineMode::kNone;
+  return o;
+}
+
 // A bent arm, fingers half open: the hand clear of the other links and the floor.
 std::vector<double> bentArm() {
   return {0.3, -0.4, 0.2, -2.2, 0.1, 1.9, 0.7, 0.02};
@@ -65,9 +73,8 @@ struct Backends {
 
   Backends(const RobotModel& robot, const std::vector<EnvironmentObject>& objects) {
     const EnvironmentGeometry environment = EnvironmentGeometry::load(objects);
-    auto model =
-        std::make_shared<const OctreeCollisionModel>(robot, environment, CollisionModelOptions{});
-    CollisionModelOptions exact;
+    auto model = std::make_shared<const OctreeCollisionModel>(robot, environment, voxelOptions());
+    CollisionModelOptions exact = voxelOptions();
     exact.exact_primitives = true;
     auto exact_model = std::make_shared<const OctreeCollisionModel>(robot, environment, exact);
     add("octree-fused", std::make_shared<const OctreeBackend>(model, CheckerPath::kFused));
@@ -306,11 +313,11 @@ TEST_F(Explain, ThreadsSharingAModelGetTheSameExplanations) {
   };
   const EnvironmentGeometry environment = EnvironmentGeometry::load(objects);
   const OctreeBackend alone(
-      std::make_shared<const OctreeCollisionModel>(robot, environment, CollisionModelOptions{}),
+      std::make_shared<const OctreeCollisionModel>(robot, environment, voxelOptions()),
       CheckerPath::kFused);
   const std::vector<std::string> expected = explainAll(alone);
   const OctreeBackend shared(
-      std::make_shared<const OctreeCollisionModel>(robot, environment, CollisionModelOptions{}),
+      std::make_shared<const OctreeCollisionModel>(robot, environment, voxelOptions()),
       CheckerPath::kFused);
   std::vector<std::vector<std::string>> got(4);
   std::vector<std::thread> threads;

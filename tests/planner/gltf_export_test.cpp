@@ -45,6 +45,7 @@ std::shared_ptr<OctreeCollisionModel> smallModel(double resolution = 0.02) {
   objects[1].X_WO.translation() = Eigen::Vector3d(0.2, 0.1, 0.2);
   CollisionModelOptions options;
   options.resolution = resolution;
+  options.refine = RefineMode::kNone;  // the voxels' answers
   options.base_position_bounds =
       Eigen::AlignedBox3d(Eigen::Vector3d(-0.5, -0.5, 0.0), Eigen::Vector3d(0.5, 0.5, 0.6));
   return std::make_shared<OctreeCollisionModel>(std::move(robot),

@@ -27,6 +27,7 @@ std::shared_ptr<const OctreeCollisionModel> model(
     std::uint32_t leaf_capacity = kSelfBroadPhaseLeafCapacity) {
   CollisionModelOptions o;
   o.resolution = 0.01;
+  o.refine = RefineMode::kNone;  // the voxels' answers
   o.self_broad_phase = strategy;
   o.self_broad_phase_leaf_capacity = leaf_capacity;
   static const EnvironmentGeometry empty = EnvironmentGeometry::load({});
@@ -166,7 +167,8 @@ TEST(EnvironmentPreTest, ObjectBoxesMatchEnvironmentBox) {
     const EnvironmentGeometry env = EnvironmentGeometry::load(objects);
     CollisionModelOptions o;
     o.resolution = 0.01;
-    o.link_resolution = 0.01;  // the moveTree path below materialises every link leaf
+    o.refine = RefineMode::kNone;  // the voxels' answers
+    o.link_resolution = 0.01;      // the moveTree path below materialises every link leaf
     const OctreeCollisionModel automatic(robot, env, o);
     EXPECT_EQ(automatic.report().environment_pre_test, EnvironmentPreTest::kObjectBoxes);
     EXPECT_EQ(automatic.report().environment_object_boxes, objects.size());
@@ -204,6 +206,7 @@ TEST(EnvironmentUniverse, KeepsTheShiftWithTheFewestNodes) {
   for (const double res : {0.02, 0.005}) {
     CollisionModelOptions o;
     o.resolution = res;
+    o.refine = RefineMode::kNone;  // the voxels' answers
     const OctreeCollisionModel m(snake(4, 1.5), env, o);
     const Eigen::AlignedBox3d region = env.bounds()->intersection(m.report().reach_W);
     std::size_t fewest = 0;

@@ -27,6 +27,7 @@ std::unique_ptr<OctreeCollisionModel> build(const PlanningScene& scene, double l
                                             SelfBroadPhase broad_phase = SelfBroadPhase::kAuto) {
   CollisionModelOptions o;
   o.resolution = kResolution;
+  o.refine = RefineMode::kNone;  // the voxels' answers
   o.link_resolution = link;
   o.self_link_resolution = self;
   o.self_broad_phase = broad_phase;

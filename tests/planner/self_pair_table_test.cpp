@@ -267,6 +267,7 @@ std::unique_ptr<OctreeCollisionModel> octo7Model(const PlanningScene& scene, boo
                                                  Rounding rounding = Rounding::kConservative) {
   CollisionModelOptions o;
   o.resolution = 0.01;
+  o.refine = RefineMode::kNone;  // the voxels' answers
   o.X_WB = scene.model->baseMount();
   o.self_pair_tables = tables;
   o.rounding = rounding;
@@ -344,6 +345,7 @@ TEST(SelfPairTables, Octo6TablesDropTheFlangeTurnAndNeverMissACollision) {
       std::string(OCTOMOTION_SOURCE_DIR) + "/robots/scenes/cluttered_table.yaml", overrides);
   CollisionModelOptions o;
   o.resolution = 0.02;
+  o.refine = RefineMode::kNone;  // the voxels' answers
   o.X_WB = scene.model->baseMount();
   const OctreeCollisionModel plain(scene.model->robot(), *scene.environment, o);
   o.self_pair_tables = true;
@@ -384,6 +386,7 @@ TEST(SelfPairTables, Octo6TablesDropTheFlangeTurnAndNeverMissACollision) {
 TEST(SelfPairTables, BadToleranceIsRejected) {
   CollisionModelOptions o;
   o.resolution = 0.02;
+  o.refine = RefineMode::kNone;  // the voxels' answers
   o.X_WB = bookshelf().scene.model->baseMount();
   o.self_pair_tables = true;
   o.self_pair_table_tolerance = 0;

@@ -67,6 +67,7 @@ Models build(const RobotModel& robot, const std::vector<EnvironmentObject>& obje
   const EnvironmentGeometry environment = EnvironmentGeometry::load(objects);
   CollisionModelOptions options;
   options.resolution = 0.02;
+  options.refine = RefineMode::kNone;  // the voxels' answers
   options.warnings = [warnings](const std::string& m) {
     if (warnings) warnings->push_back(m);
   };

@@ -300,6 +300,7 @@ TEST(WorldUpdates, RefusedWithClearErrors) {
   const RobotModel robot = loadOcto7();
   CollisionModelOptions tight;  // the universe fitted to the environment it is built with
   tight.resolution = 0.02;
+  tight.refine = RefineMode::kNone;  // updatable (the default, auto, is exact here)
   OctreeCollisionModel model(robot, EnvironmentGeometry::load(tableScene()), tight);
   const std::uint64_t id = model.id();
   const Octree before = model.environment();

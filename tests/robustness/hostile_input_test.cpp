@@ -328,7 +328,8 @@ TEST_F(HostileInput, StartInCollisionIsSaidAtOnce) {
   // 20 cm voxels.
   text.replace(text.find(into_post), into_post.size(), "start: {xyz: [0, 0.699, 0]}");
   const std::string near = write("start_near_post.yaml", text);
-  const CliResult margin = runCli(dir_, "plan " + near + " --resolution 0.2 --link-resolution 0.2");
+  const CliResult margin =
+      runCli(dir_, "plan " + near + " --resolution 0.2 --link-resolution 0.2 --refine none");
   EXPECT_EQ(margin.status, 1);
   EXPECT_THAT(margin.err, HasSubstr("the exact shapes do not touch: within the voxel margin of "
                                     "resolution 0.2 m, try a finer --resolution"));

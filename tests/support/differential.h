@@ -366,6 +366,8 @@ inline Case makeCase(std::mt19937_64& rng, const DifferentialOptions& options, s
   c.overrides.rounding = centre_rounding ? Rounding::kCenter : Rounding::kConservative;
   c.overrides.checker = fused ? CheckerKind::kOctreeFused : CheckerKind::kOctree;
   c.overrides.exact_primitives = exact;
+  // The voxels' own answers (their margins are what is scored), not the default exact refine.
+  c.overrides.refine = RefineMode::kNone;
   // Self-pair tables where they are cheap to build (octo7: one small table, in well under a
   // second), conservative rounding only.
   const bool octo7 = what.str().rfind("octo7", 0) == 0;

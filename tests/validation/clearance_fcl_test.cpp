@@ -23,6 +23,7 @@ void expectLowerBound(const std::string& name) {
   o.resolution = 0.02;
   o.require_free_start_goal = false;
   o.checker = CheckerKind::kOctreeFused;
+  o.refine = RefineMode::kNone;  // the octree's own bound, not refine exact's FCL distances
   const PlanningScene octree = loadPlanningScene(path, o, [](const std::string&) {});
   o.checker = CheckerKind::kFcl;
   const PlanningScene fcl = loadPlanningScene(path, o, [](const std::string&) {});

@@ -85,6 +85,7 @@ std::size_t unrefinedFalsePositives(const PlanningScene& refined,
   options.base_position_bounds = refined.spec.problem.bounds;
   options.keep_mesh_root_transform = refined.spec.robot.keep_mesh_root_transform;
   options.center_mesh_vertices = refined.spec.robot.center_mesh_vertices;
+  options.refine = RefineMode::kNone;  // the default (auto) would refine too
   const auto plain = std::make_shared<const OctreeCollisionModel>(refined.model->robot(),
                                                                   *refined.environment, options);
   const OctreeBackend checked(plain, CheckerPath::kFused);
@@ -243,7 +244,16 @@ TEST(RefineExact, SceneKeyIsReadAndCheckedByName) {
   std::ofstream(good) << text.substr(0, at + 8) << "  refine: exact\n" << text.substr(at + 8);
   std::ofstream(bad) << text.substr(0, at + 8) << "  refine: fcl\n" << text.substr(at + 8);
   EXPECT_EQ(loadScene(good).octree.refine, RefineMode::kExact);
-  EXPECT_EQ(loadScene(cage).octree.refine, RefineMode::kNone);
+  // The default: auto, resolved to exact under the scene's conservative rounding.
+  EXPECT_EQ(loadScene(cage).octree.refine, RefineMode::kAuto);
+  EXPECT_EQ(resolveRefineMode(RefineMode::kAuto, Rounding::kConservative, false),
+            RefineMode::kExact);
+  EXPECT_EQ(resolveRefineMode(RefineMode::kAuto, Rounding::kCenter, false), RefineMode::kNone);
+  EXPECT_EQ(resolveRefineMode(RefineMode::kAuto, Rounding::kConservative, true), RefineMode::kNone);
+  EXPECT_EQ(resolveRefineMode(RefineMode::kNone, Rounding::kConservative, false),
+            RefineMode::kNone);
+  EXPECT_EQ(resolveRefineMode(RefineMode::kExact, Rounding::kConservative, true),
+            RefineMode::kExact);
   try {
     loadScene(bad);
     ADD_FAILURE() << "refine: fcl accepted";

@@ -75,6 +75,8 @@ inline PlanningScene loadValidationScene(const std::string& path, Rounding round
   overrides.checker = checker;
   overrides.self_link_resolution = self_link_resolution;
   overrides.exact_primitives = exact_primitives;
+  // The voxels' own answers (the margins validated here), not the default exact refine.
+  overrides.refine = RefineMode::kNone;
   const SceneSpec spec = loadScene(path);
   bool arm = !spec.robot.urdf.empty();
   if (arm) {

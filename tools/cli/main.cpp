@@ -285,7 +285,7 @@ int info(const Args& a) {
   std::cout << "resolution: " << *scene.spec.octree.resolution << " m, rounding "
             << toString(scene.spec.octree.rounding) << ", checker "
             << checkerKindName(scene.checker) << ", refine "
-            << refineModeName(scene.spec.octree.refine) << "\n"
+            << refineModeName(scene.model->refine()) << "\n"
             << scene.model->report().toString();
   return 0;
 }

@@ -134,10 +134,11 @@ const OptionTable<SceneOverrides>& sceneOptions() {
        [](const std::string& flag, const std::string& v, SceneOverrides& o) {
          o.exact_primitives = parseOnOff(flag, v);
        }},
-      {"--refine", "none|exact",
+      {"--refine", "auto|none|exact",
        "exact: FCL decides each link-object and link-link pair whose voxels\nmeet, so the "
-       "answer is FCL's (conservative rounding; default: the\nscene's, else none; "
-       "docs/planner.md, \"Exact refine mode\")",
+       "answer is FCL's (conservative rounding); none: the voxels\ndecide; auto: exact under "
+       "conservative rounding, else none\n(default: the scene's, else auto; docs/planner.md, "
+       "\"Exact refine mode\")",
        [](const std::string&, const std::string& v, SceneOverrides& o) {
          o.refine = parseRefineMode(v);
        }},

@@ -31,6 +31,8 @@ OctreeCollisionModel::OctreeCollisionModel(RobotModel robot,
                                            const CollisionModelOptions& options)
     : id_(nextModelId()), robot_(std::move(robot)), options_(options) {
   if (!environment) throw InvalidArgument("OctreeCollisionModel: no environment");
+  options_.refine =
+      resolveRefineMode(options_.refine, options_.rounding, options_.fit_universe_to_reach);
   if (options_.refine == RefineMode::kExact) {
     // Centre rounding's "no shared voxel" does not prove freedom, so nothing could be certified.
     if (options_.rounding != Rounding::kConservative) {

@@ -198,7 +198,9 @@ void OctreeCollisionModel::requireUpdatable() const {
   if (options_.refine == RefineMode::kExact) {
     throw InvalidArgument(
         "world updates: not available for a model built with refine exact "
-        "(CollisionModelOptions::refine); build a new model instead");
+        "(CollisionModelOptions::refine; the default, auto, is exact unless "
+        "fit_universe_to_reach is set); build it with refine none or fit_universe_to_reach, or "
+        "build a new model instead");
   }
   if (options_.exact_primitives) {
     throw InvalidArgument(

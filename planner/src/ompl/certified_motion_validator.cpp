@@ -37,7 +37,7 @@ struct CertifiedMotionValidator::Scratch {
   Eigen::Isometry3d X_WB1 = Eigen::Isometry3d::Identity();
   Eigen::Isometry3d X_WB2 = Eigen::Isometry3d::Identity();
   std::vector<double> link_bound, pair_bound, caps;  // per link, per pair, per link
-  std::vector<int> active_links;
+  std::vector<std::size_t> active_links;
   std::vector<std::size_t> active_pairs;
   std::vector<double> clearance, distance;  // per evaluated state: per link, per pair
   std::vector<Interval> todo;
@@ -171,8 +171,8 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
   }
   // Each link's path-length bound over the whole edge, and each pair's relative one; an
   // interval's is this times its length (the interpolation is linear in q, and in translation
-  // and angle for SE(3)). Only links and pairs whose bound exceeds the resolution need more than
-  // the ends ("active"); a link no joint moves never does.
+  // and angle for SE(3)). Only links and pairs whose bound exceeds what the ends decide need
+  // more than the ends ("active"); a link no joint moves never does.
   for (std::size_t i = 0; i < n; ++i) t.dq[i] = t.q2[i] - t.q1[i];
   double free_flying = 0.0;
   if (robot.isFreeFlying()) {
@@ -181,6 +181,11 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
         bound_->freeFlyingBound((t.X_WB2.translation() - t.X_WB1.translation()).norm(), angle);
     if (!std::isfinite(free_flying)) return false;
   }
+  // Voxel answers carry a margin: a link or pair whose bound over an interval is at most the
+  // resolution is decided by its valid ends. Exact answers carry none: only clearances prove.
+  const bool has_clearance = backend.clearanceBound() != ClearanceBound::kNone;
+  const bool exact = has_clearance && backend.exactAnswers();
+  const double decided_by_ends = exact ? 0.0 : resolution_;
   t.link_bound.assign(links, 0.0);
   t.active_links.clear();
   double max_bound = 0.0, max_link = 0.0, max_pair = 0.0;
@@ -188,7 +193,7 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
     const double b = free_flying + bound_->linkBound(l, t.dq.data());
     if (!std::isfinite(b)) return false;
     t.link_bound[static_cast<std::size_t>(l)] = b;
-    if (b > resolution_) t.active_links.push_back(l);
+    if (b > decided_by_ends) t.active_links.push_back(static_cast<std::size_t>(l));
     max_link = std::max(max_link, b);
   }
   t.pair_bound.assign(pairs, 0.0);
@@ -197,14 +202,26 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
     const double b = bound_->pairBound(p, t.dq.data());
     if (!std::isfinite(b)) return false;
     t.pair_bound[p] = b;
-    if (b > resolution_) t.active_pairs.push_back(p);
+    if (b > decided_by_ends) t.active_pairs.push_back(p);
     max_pair = std::max(max_pair, b);
   }
   max_bound = std::max(max_link, max_pair);
-  // Clearances above a link's whole-edge bound decide nothing more: capped (FCL stops early).
+  // Exact answers: the travel below which an unproven interval rejects the edge.
+  const double min_travel = resolution_ * kExactMinTravel;
+  // What an evaluated state's clearance (distance) of the k-th active link (pair) i must reach,
+  // above which it decides nothing more: capped there, so FCL and the grid stop early. At an
+  // end (no interval), the whole edge's bound. At the midpoint of [a, b] (bound B there), enough
+  // to prove both halves at once, B / 2 - min(value at a, value at b), plus B / 1024; 0 (not
+  // computed) for one already proven over [a, b].
+  auto capOf = [&](const Scratch::Interval* in, std::size_t k, std::size_t i, double whole,
+                   const std::vector<double>& values, std::size_t width, std::uint64_t done) {
+    if (!in) return whole;
+    if (k < 64 && (done >> k & 1)) return 0.0;
+    const double b = whole * (in->b - in->a);
+    const double lo = std::min(values[in->slot_a * width + i], values[in->slot_b * width + i]);
+    return std::max(0.5 * b - lo, 0.0) + b / 1024;
+  };
   t.caps.assign(links, 0.0);
-  for (int l : t.active_links) t.caps[static_cast<std::size_t>(l)] = t.link_bound[l];
-  const bool has_clearance = backend.clearanceBound() != ClearanceBound::kNone;
   const bool direct = !robot.isFreeFlying();  // q(t) without OMPL's interpolation
   const ob::SpaceInformation* si = si_;
   if (!direct) t.useSpace(si->getStateSpace());
@@ -215,8 +232,8 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
   // Checks the state at t_edge into a new slot: the environment and/or the self pairs, then
   // the active links' clearances and the active pairs' distances when asked.
   // A slot's values stay 0 when its state is invalid.
-  auto evaluate = [&](double t_edge, bool environment, bool self, bool clearances, bool distances,
-                      std::size_t& slot) {
+  auto evaluate = [&](double t_edge, const Scratch::Interval* in, bool environment, bool self,
+                      bool clearances, bool distances, std::size_t& slot) {
     (environment ? state_checks_ : self_checks_).fetch_add(1, std::memory_order_relaxed);
     slot = t.clearance.size() / stride;
     t.clearance.resize(t.clearance.size() + stride, 0.0);
@@ -243,6 +260,10 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
                               : backend.selfInCollision(t.q.data(), n, t.X_WB, scratch);
     if (collides) return false;
     if (environment && clearances && has_clearance) {
+      for (std::size_t k = 0; k < t.active_links.size(); ++k) {
+        const std::size_t l = t.active_links[k];
+        t.caps[l] = capOf(in, k, l, t.link_bound[l], t.clearance, stride, in ? in->links_done : 0);
+      }
       backend.motionClearances(scratch, t.caps.data(), t.clearance.data() + slot * stride);
     }
     if (self && distances && !t.active_pairs.empty()) {
@@ -253,45 +274,61 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
         posed = &t.data;
       }
       double* d = t.distance.data() + slot * pairs;
-      for (std::size_t p : t.active_pairs) d[p] = bound_->pairDistance(p, *posed, t.pair_bound[p]);
+      for (std::size_t k = 0; k < t.active_pairs.size(); ++k) {
+        const std::size_t p = t.active_pairs[k];
+        const double cap =
+            capOf(in, k, p, t.pair_bound[p], t.distance, pairs, in ? in->pairs_done : 0);
+        if (cap <= 0) continue;
+        d[p] = bound_->pairDistance(p, *posed, cap);
+        // The spheres' bound is too small and near contact: the links' own distance (farther,
+        // FCL's distance costs more than the bisection the looser bound asks for).
+        if (exact && d[p] < cap && d[p] < kExactNear * resolution_) {
+          const auto& [link_a, link_b] = bound_->pairs()[p];
+          d[p] = std::max(d[p], backend.linkPairDistance(scratch, link_a, link_b, cap));
+        }
+      }
     }
     return true;
   };
-  // Whether every active link (pair) is proven free over [a, b] or decided by its ends; the
-  // bit of each one proven is set in `done` (the first 64; the others are tested again).
-  auto linksFree = [&](const Interval& in, std::uint64_t& done) {
-    const double s = in.b - in.a;
-    const double* ca = t.clearance.data() + in.slot_a * stride;
-    const double* cb = t.clearance.data() + in.slot_b * stride;
-    bool all = true;
-    for (std::size_t k = 0; k < t.active_links.size(); ++k) {
+  // The largest bound over [a, b] (of length s) of the active links or pairs not yet proven
+  // free there, 0 when all are: one is proven when its bound is below the sum of its values
+  // (clearances, distances) at the ends, or, for voxel answers, decided by its ends. The bit of
+  // each one proven is set in `done` (the first 64; the others are tested again).
+  auto unproven = [&](const std::vector<std::size_t>& active, const double* bound, const double* va,
+                      const double* vb, double s, std::uint64_t& done) {
+    double open = 0.0;
+    for (std::size_t k = 0; k < active.size(); ++k) {
       if (k < 64 && (done >> k & 1)) continue;
-      const auto l = static_cast<std::size_t>(t.active_links[k]);
-      const double b = t.link_bound[l] * s;
-      if (b <= resolution_ || b < ca[l] + cb[l]) {
+      const std::size_t i = active[k];
+      const double b = bound[i] * s;
+      if (b <= decided_by_ends || b < va[i] + vb[i]) {
         if (k < 64) done |= std::uint64_t{1} << k;
       } else {
-        all = false;
+        open = std::max(open, b);
       }
     }
-    return all;
+    return open;
   };
-  auto pairsFree = [&](const Interval& in, std::uint64_t& done) {
-    const double s = in.b - in.a;
-    const double* da = t.distance.data() + in.slot_a * pairs;
-    const double* db = t.distance.data() + in.slot_b * pairs;
-    bool all = true;
-    for (std::size_t k = 0; k < t.active_pairs.size(); ++k) {
-      if (k < 64 && (done >> k & 1)) continue;
-      const std::size_t p = t.active_pairs[k];
-      const double b = t.pair_bound[p] * s;
-      if (b <= resolution_ || b < da[p] + db[p]) {
-        if (k < 64) done |= std::uint64_t{1} << k;
-      } else {
-        all = false;
-      }
+  auto unprovenLinks = [&](Scratch::Interval& in) {
+    return unproven(t.active_links, t.link_bound.data(), t.clearance.data() + in.slot_a * stride,
+                    t.clearance.data() + in.slot_b * stride, in.b - in.a, in.links_done);
+  };
+  auto unprovenPairs = [&](Scratch::Interval& in) {
+    return unproven(t.active_pairs, t.pair_bound.data(), t.distance.data() + in.slot_a * pairs,
+                    t.distance.data() + in.slot_b * pairs, in.b - in.a, in.pairs_done);
+  };
+
+  // Exact answers: the last valid state reported is a proven interval's end at least the minimum
+  // travel from contact (every active link and pair), so that an edge to it can be proven
+  // again; nearer ones are skipped.
+  auto clearOfContact = [&](std::size_t slot) {
+    for (std::size_t l : t.active_links) {
+      if (t.clearance[slot * stride + l] < min_travel) return false;
     }
-    return all;
+    for (std::size_t p : t.active_pairs) {
+      if (t.distance[slot * pairs + p] < min_travel) return false;
+    }
+    return true;
   };
 
   try {
@@ -317,26 +354,28 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
       Scratch::Remembered& r = t.remembered[(hash ^ (hash >> 29)) % Scratch::kRemembered];
       if (r.validator == serial_ && r.key == t.key) {
         bool known = true;
-        for (int l : t.active_links) known = known && !std::isnan(r.clearance[l]);
+        for (std::size_t l : t.active_links) known = known && !std::isnan(r.clearance[l]);
         for (std::size_t p : t.active_pairs) known = known && !std::isnan(r.distance[p]);
         if (known) {
           slot = t.clearance.size() / stride;
           t.clearance.resize(t.clearance.size() + stride, 0.0);
           t.distance.resize(t.distance.size() + pairs, 0.0);
-          for (int l : t.active_links) t.clearance[slot * stride + l] = r.clearance[l];
+          for (std::size_t l : t.active_links) t.clearance[slot * stride + l] = r.clearance[l];
           for (std::size_t p : t.active_pairs) t.distance[slot * pairs + p] = r.distance[p];
           return true;
         }
       }
-      if (!evaluate(t_edge, true, true, need_clearance, need_distance, slot)) return false;
+      if (!evaluate(t_edge, nullptr, true, true, need_clearance, need_distance, slot)) {
+        return false;
+      }
       r.validator = serial_;
       r.key = t.key;
       r.clearance.assign(stride, kUnknown);
       r.distance.assign(pairs, kUnknown);
       if (has_clearance) {
-        for (int l : t.active_links) r.clearance[l] = t.clearance[slot * stride + l];
+        for (std::size_t l : t.active_links) r.clearance[l] = t.clearance[slot * stride + l];
       } else {
-        for (int l : t.active_links) r.clearance[l] = 0.0;
+        for (std::size_t l : t.active_links) r.clearance[l] = 0.0;
       }
       for (std::size_t p : t.active_pairs) r.distance[p] = t.distance[slot * pairs + p];
       return true;
@@ -361,24 +400,31 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
         in = t.todo[head++];
       }
       const double s = in.b - in.a;
+      double open_links = 0.0, open_pairs = 0.0;
       if (in.b_valid) {
-        const bool links_free = linksFree(in, in.links_done);
-        const bool pairs_free = pairsFree(in, in.pairs_done);
-        if (links_free && pairs_free) {
-          if (want_last) last_valid = in.b;
+        open_links = unprovenLinks(in);
+        open_pairs = unprovenPairs(in);
+        if (open_links == 0.0 && open_pairs == 0.0) {
+          if (want_last && (!exact || clearOfContact(in.slot_b))) last_valid = in.b;
           continue;
         }
+        // Exact answers: a link or pair still unproven when its bound over the interval is below
+        // the minimum may graze an obstacle (or the other link); the edge is not proven, so it
+        // is rejected, here.
+        if (exact && std::max(open_links, open_pairs) < min_travel) return false;
       } else if (max_bound * s <= resolution_) {
-        last_valid = in.a;
+        if (!exact) last_valid = in.a;
         return false;
       }
-      // Halves at the final resolution are decided by their ends: no clearance needed there.
-      const bool environment = !in.b_valid || !linksFree(in, in.links_done);
-      const bool self = !in.b_valid || !pairsFree(in, in.pairs_done);
+      // Voxel answers: halves at the final resolution are decided by their ends, no clearance
+      // needed there.
+      const bool environment = !in.b_valid || open_links > 0.0;
+      const bool self = !in.b_valid || open_pairs > 0.0;
       const double m = 0.5 * (in.a + in.b);
       std::size_t sm = 0;
-      const bool m_valid = evaluate(m, environment || !self, self, 0.5 * max_link * s > resolution_,
-                                    0.5 * max_pair * s > resolution_, sm);
+      const bool m_valid =
+          evaluate(m, &in, environment || !self, self, 0.5 * max_link * s > decided_by_ends,
+                   0.5 * max_pair * s > decided_by_ends, sm);
       if (!m_valid && !want_last) return false;
       const Interval left{in.a, m, in.slot_a, sm, m_valid, in.links_done, in.pairs_done};
       const Interval right{m, in.b, sm, in.slot_b, in.b_valid, in.links_done, in.pairs_done};

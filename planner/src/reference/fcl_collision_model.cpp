@@ -232,6 +232,11 @@ void FclCollisionModel::motionClearances(BackendScratch& scratch, const double* 
   }
 }
 
+double FclCollisionModel::linkPairDistance(BackendScratch& scratch, int link_a, int link_b,
+                                           double cap) const {
+  return geometry_->robot.linksDistance(scratchOf(scratch).robot, link_a, link_b, cap);
+}
+
 const RobotData* FclCollisionModel::posedRobot(BackendScratch& scratch) const {
   return &scratchOf(scratch).robot.robot;
 }

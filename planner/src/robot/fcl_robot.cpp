@@ -207,4 +207,23 @@ double RobotGeometry::selfDistance(RobotScratch& s, double cap) const {
   return best;
 }
 
+double distanceBelow(const fcl::CollisionObjectd& a, const fcl::CollisionObjectd& b, double best) {
+  if (a.getAABB().distance(b.getAABB()) >= best) return best;
+  fcl::DistanceRequestd request;
+  fcl::DistanceResultd result;
+  fcl::distance(&a, &b, request, result);
+  return std::min(best, std::max(0.0, result.min_distance));
+}
+
+double RobotGeometry::linksDistance(RobotScratch& s, int link_a, int link_b, double cap) const {
+  double best = cap;
+  for (std::size_t a = 0; a < elements_.size() && best > 0; ++a) {
+    if (elements_[a].link != link_a) continue;
+    for (std::size_t b = 0; b < elements_.size() && best > 0; ++b) {
+      if (elements_[b].link == link_b) best = distanceBelow(s.objects[a], s.objects[b], best);
+    }
+  }
+  return best;
+}
+
 }  // namespace octomotion::fcl_internal

@@ -33,6 +33,9 @@ void setTightAabb(fcl::CollisionObjectd& object);
 // Narrow phase on two posed objects after an AABB pre-test. `result` is cleared first.
 bool collidePair(const fcl::CollisionObjectd& a, const fcl::CollisionObjectd& b,
                  const fcl::CollisionRequestd& request, fcl::CollisionResultd& result);
+// FCL's distance between two posed objects (0 in contact) when below `best`, else `best`
+// (objects whose AABBs are `best` apart are not measured).
+double distanceBelow(const fcl::CollisionObjectd& a, const fcl::CollisionObjectd& b, double best);
 
 struct RobotScratch {
   RobotData robot;
@@ -67,6 +70,9 @@ class RobotGeometry {
   // Smallest distance between the elements of checked pairs (0 in contact, +inf with no pairs);
   // pairs whose AABBs are at least `cap` apart are skipped (distances >= cap may read as cap).
   double selfDistance(RobotScratch& scratch, double cap) const;
+  // The smallest distance between an element of link_a and one of link_b (0 in contact), or
+  // `cap` when at least `cap` (or when a link has no elements).
+  double linksDistance(RobotScratch& scratch, int link_a, int link_b, double cap) const;
 
   // World updates (FclCollisionModel::attachObject): an element carried by `link`, paired with
   // the elements of every link not in `allowed_links` (per robot link); returns its index. And

@@ -77,6 +77,19 @@ class CollisionBackend {
   // link's value is not needed (unspecified). Default: motionClearance() for every link.
   virtual void motionClearances(BackendScratch& scratch, const double* caps,
                                 double* per_link) const;
+  // Whether a state this backend finds free is free for the exact geometry with no margin (the
+  // FCL checker; octree models with RefineMode::kExact), rather than by voxels that hold the
+  // geometry with up to a voxel to spare. The certified motion validator then proves each edge
+  // from exact clearances alone (docs/validation.md §4): motionClearances and linkPairDistance
+  // are exact below their caps.
+  virtual bool exactAnswers() const { return false; }
+  // A lower bound on the distance between the geometry of links a and b at the scratch's last
+  // pose (0 in contact), or `cap` when it is at least `cap`. Exact for exactAnswers() backends;
+  // default 0 (no bound).
+  virtual double linkPairDistance(BackendScratch& /*scratch*/, int /*link_a*/, int /*link_b*/,
+                                  double /*cap*/) const {
+    return 0.0;
+  }
   // The link poses of the scratch's last query (after any of the queries above), or null when
   // the backend keeps none.
   virtual const RobotData* posedRobot(BackendScratch& /*scratch*/) const { return nullptr; }

@@ -193,7 +193,11 @@ struct CollisionModelOptions {
   // The FCL geometry of the robot and of every object is built with the model. Certain contacts
   // (core_boxes) and static folding (fold_static) prove a shared voxel, not an exact contact, so
   // they are off in this mode. World updates are refused.
-  RefineMode refine = RefineMode::kNone;
+  // kAuto (the default; resolveRefineMode): kExact under conservative rounding, kNone under
+  // centre rounding or with fit_universe_to_reach (a world that changes). A conservative 1 cm
+  // model without it rejects free states up to two voxel diagonals from contact (a grasp a few
+  // millimetres from an object, most of an arm's near self pairs): docs/trade-off.md.
+  RefineMode refine = RefineMode::kAuto;
   // RefineMode::kExact: clearanceLowerBound returns FCL's exact distance to the environment when
   // the octree's bound is below this (metres), else the octree's bound.
   double refine_clearance_margin = 0.05;
@@ -268,7 +272,7 @@ struct CollisionModelReport {
   std::vector<std::string> static_links;
   std::vector<std::pair<std::string, std::string>> constant_pairs;
   std::vector<std::string> static_collisions;
-  RefineMode refine = RefineMode::kNone;  // CollisionModelOptions::refine
+  RefineMode refine = RefineMode::kNone;  // CollisionModelOptions::refine, resolved
   double refine_build_seconds = 0;        // the FCL geometry of RefineMode::kExact
   double build_seconds = 0;
   std::string toString() const;  // the human-readable "what was modelled" summary
@@ -397,6 +401,14 @@ class OctreeCollisionModel {
   // OctoMaps: their voxels). Without kExact: clearanceLowerBound.
   double refinedClearance(const CheckScratch& scratch, double margin) const;
   RefineMode refine() const { return options_.refine; }
+  // RefineMode::kExact, for the certified motion validator (refine_clearance.cpp): each link l
+  // with caps[l] > 0 whose per_link[l] (a lower bound, e.g. clearanceLowerBoundGridPerLink's)
+  // is below caps[l] and below two voxels gets FCL's exact distance from its geometry to the
+  // environment's objects, or caps[l] when that is at least caps[l]. And the exact distance between
+  // two links' geometry, or `cap` when at least `cap`. Without kExact: per_link unchanged, and 0.
+  void refineClearancesPerLink(const CheckScratch& scratch, const double* caps,
+                               double* per_link) const;
+  double refinedPairDistance(const CheckScratch& scratch, int link_a, int link_b, double cap) const;
   // RefineMode::kExact: what the scratch's refined queries decided how (zero before any).
   RefineCounts refineCounts(const CheckScratch& scratch) const;
   // A looser, much cheaper bound for certifying motions (CertifiedMotionValidator): the same

@@ -59,6 +59,15 @@ class OctreeBackend final : public CollisionBackend {
     const double slack =
         path_ == CheckerPath::kMoveTree ? std::sqrt(3.0) * model_->grid().voxelSize() : 0.0;
     model_->clearanceLowerBoundGridPerLink(scratchOf(scratch).check, caps, slack, per_link);
+    if (model_->refine() == RefineMode::kExact) {
+      model_->refineClearancesPerLink(scratchOf(scratch).check, caps, per_link);
+    }
+  }
+  bool exactAnswers() const override { return model_->refine() == RefineMode::kExact; }
+  // OctreeCollisionModel::refinedPairDistance (0 without RefineMode::kExact).
+  double linkPairDistance(BackendScratch& scratch, int link_a, int link_b,
+                          double cap) const override {
+    return model_->refinedPairDistance(scratchOf(scratch).check, link_a, link_b, cap);
   }
   const RobotData* posedRobot(BackendScratch& scratch) const override {
     return &scratchOf(scratch).check.robot;

@@ -1,6 +1,6 @@
-// An OMPL MotionValidator that accepts an edge only when it is proven free down to a stated
-// resolution, by adaptive bisection (Schwarzer, Saha & Latombe, "Adaptive dynamic collision
-// checking for single and multiple articulated robots", IEEE T-RO 2005): docs/validation.md §4.
+// An OMPL MotionValidator that accepts an edge only when it is proven free, by adaptive
+// bisection (Schwarzer, Saha & Latombe, "Adaptive dynamic collision checking for single and
+// multiple articulated robots", IEEE T-RO 2005): docs/validation.md §4.
 //
 // Link by link, an interval [a, b] of the edge, both ends valid, is free of the environment for
 // link l when l's path-length bound over it (LinkMotionBound, robot/motion_bound.h) is less
@@ -8,15 +8,22 @@
 // CollisionBackend::motionClearances). Pair by pair, it is free of self-collision when the
 // bound on the change of the pair's distance (LinkMotionBound::pairBound: only the joints that
 // move one link and not the other) is less than the sum of the pair's distance bounds at its
-// ends (LinkMotionBound::pairDistance). A link or pair whose bound over the interval is at most
-// `resolution` is decided by the checked ends: each of its points then stays within
-// resolution / 2 of a pose the checker found free (for a pair, its distance within
-// resolution / 2 of that at a checked end). Otherwise the
+// ends (LinkMotionBound::pairDistance; for exact answers, the links' own distance,
+// CollisionBackend::linkPairDistance, where the spheres' bound is too small). Otherwise the
 // midpoint is checked (breadth first: coarse to fine, so a colliding edge fails early) and both
 // halves are tried, each knowing which links and pairs are already proven over it; a midpoint
-// needed by the self pairs alone is checked with selfInCollision. Each thread remembers the
-// last valid ends it checked (their clearances and pair distances), so an edge that starts where
-// an earlier one ended (RRTConnect's connect steps, a tree node reused) does not check it again.
+// needed by the self pairs alone is checked with selfInCollision.
+//
+// Termination depends on the checker's answer (CollisionBackend::exactAnswers):
+// - voxel answers carry a margin: a link or pair whose bound over the interval is at most
+//   `resolution` is decided by the checked ends (each of its points then stays within
+//   resolution / 2 of a pose the checker found free, whose voxels hold the geometry);
+// - exact answers carry none: a link or pair is proven only by the clearances, and an interval
+//   whose unproven links' or pairs' bound falls below kExactMinTravel * resolution rejects the
+//   edge, so every accepted edge is proven free for the exact geometry.
+// Each thread remembers the last valid ends it checked (their clearances and pair distances), so
+// an edge that starts where an earlier one ended (RRTConnect's connect steps, a tree node
+// reused) does not check it again.
 #pragma once
 
 #include <atomic>
@@ -39,6 +46,16 @@ namespace octomotion {
 
 class CertifiedMotionValidator : public ompl::base::MotionValidator {
  public:
+  // Exact answers: the bound, as a fraction of the resolution, below which an interval whose
+  // links or pairs are still unproven rejects the edge. Such an interval has an end within
+  // half of it (0.3 mm at 1 cm voxels) of contact, so only an edge grazing an obstacle closer
+  // than that is rejected, and bisecting there costs about two checks per halving of the
+  // edge's bound down to it.
+  static constexpr double kExactMinTravel = 1.0 / 16;
+  // Exact answers: a self pair's exact distance (CollisionBackend::linkPairDistance) is asked
+  // only where its sphere bound is below this many resolutions (and below what is needed).
+  static constexpr double kExactNear = 2.0;
+
   // `resolution` (metres, > 0): the final resolution above, usually the scene's voxel size.
   // Throws InvalidArgument for a null backend or bound, a bound made for another robot (or
   // other self pairs) or a resolution that is not positive and finite.
@@ -49,7 +66,8 @@ class CertifiedMotionValidator : public ompl::base::MotionValidator {
   // s1 is assumed valid (OMPL's contract); s2 is checked. Const and thread-safe.
   bool checkMotion(const ompl::base::State* s1, const ompl::base::State* s2) const override;
   // On failure, lastValid.second is the end of the part of the edge proven free from s1 (its
-  // state written to lastValid.first when not null).
+  // state written to lastValid.first when not null); for exact answers, the last end of a proven
+  // interval whose links and pairs are at least kExactMinTravel * resolution from contact.
   bool checkMotion(const ompl::base::State* s1, const ompl::base::State* s2,
                    std::pair<ompl::base::State*, double>& lastValid) const override;
 

@@ -75,6 +75,10 @@ class FclCollisionModel final : public CollisionBackend {
                         double* per_link) const override;
   const RobotData* posedRobot(BackendScratch& scratch) const override;
   ClearanceBound clearanceBound() const override { return ClearanceBound::kExact; }
+  bool exactAnswers() const override { return true; }
+  // FCL's distance between the two links' elements (capped as CollisionBackend says).
+  double linkPairDistance(BackendScratch& scratch, int link_a, int link_b,
+                          double cap) const override;
 
   // The scratch behind one made by makeBackendScratch, for the queries above (InvalidArgument for
   // another backend's).

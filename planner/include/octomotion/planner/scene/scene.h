@@ -73,11 +73,19 @@ inline bool isOctreeChecker(CheckerKind kind) {
 //   link-object or link-link pair whose voxels meet is decided by FCL on the original geometry
 //   (the link's meshes and primitives against that object; the two links), so the answer is
 //   FCL's. Conservative rounding only (centre rounding is refused: its "free" is not a proof).
-// In files and on command lines: "none", "exact".
-enum class RefineMode { kNone, kExact };
+// kAuto (the default): kExact wherever it applies, else kNone (resolveRefineMode): a default
+//   model accepts what FCL accepts (a grasp a few millimetres from an object), and centre
+//   rounding or a world that changes between plans still work without naming a mode.
+// In files and on command lines: "none", "exact", "auto".
+enum class RefineMode { kNone, kExact, kAuto };
 const char* refineModeName(RefineMode mode);
 // The mode a name stands for, or InvalidArgument naming the known ones.
 RefineMode parseRefineMode(const std::string& name);
+// The mode a model is built with: kAuto becomes kExact under conservative rounding, and kNone
+// under centre rounding (nothing to certify) or for a model meant for world updates
+// (`world_updates`: CollisionModelOptions::fit_universe_to_reach; kExact refuses updates). An
+// explicit kNone or kExact is kept as given.
+RefineMode resolveRefineMode(RefineMode mode, Rounding rounding, bool world_updates);
 
 // Which OMPL MotionValidator a scene plans with (problem.motion_validator, --motion-validator).
 enum class MotionValidatorKind {
@@ -102,7 +110,7 @@ struct OctreeSettings {
   // Contacts confirmed against primitives' exact shapes (CollisionModelOptions::exact_primitives).
   bool exact_primitives = false;
   // What decides the pairs the voxels cannot certify (CollisionModelOptions::refine).
-  RefineMode refine = RefineMode::kNone;
+  RefineMode refine = RefineMode::kAuto;
   Rounding rounding = Rounding::kConservative;
   CheckerKind checker = CheckerKind::kOctreeFused;
   // Memory guard (CollisionModelOptions::max_surface_voxels); empty = the library default.
