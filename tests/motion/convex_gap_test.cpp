@@ -2,9 +2,13 @@
 // "apart" is re-checked by brute force over every point pair along the direction it returns;
 // sets built on two sides of a known plane must be found apart whenever the gap asked for is
 // smaller than the slab between them; sets sharing a point are never apart; single points
-// grown by radii are apart exactly when their distance exceeds the radii and the gap.
+// grown by radii are apart exactly when their distance exceeds the radii and the gap; on a
+// convex mesh the climb along edges finds the support, and edges never change an answer's proof.
 #include <gtest/gtest.h>
 
+#include <array>
+#include <cmath>
+#include <cstdint>
 #include <random>
 #include <vector>
 
@@ -126,10 +130,92 @@ TEST(ConvexGap, BallsAreApartExactlyBeyondTheirRadiiAndTheGap) {
   }
 }
 
+// An ellipsoid's latitude-longitude mesh (convex); `bump` > 0 moves every vertex in or out along
+// its radius at random, which makes the mesh non-convex.
+void ellipsoidMesh(std::mt19937_64& rng, double bump, std::vector<Eigen::Vector3d>& points,
+                   std::vector<std::array<std::uint32_t, 3>>& triangles) {
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const Eigen::Vector3d axes(0.05 + 0.3 * u(rng), 0.05 + 0.3 * u(rng), 0.05 + 0.3 * u(rng));
+  const int rings = 8, sectors = 12;
+  points.clear();
+  triangles.clear();
+  points.emplace_back(0, 0, axes.z());  // north pole: 0
+  for (int i = 1; i < rings; ++i) {
+    for (int j = 0; j < sectors; ++j) {
+      const double theta = M_PI * i / rings, phi = 2 * M_PI * j / sectors;
+      const double r = 1 + bump * (2 * u(rng) - 1);
+      points.emplace_back(r * axes.x() * std::sin(theta) * std::cos(phi),
+                          r * axes.y() * std::sin(theta) * std::sin(phi),
+                          r * axes.z() * std::cos(theta));
+    }
+  }
+  points.emplace_back(0, 0, -axes.z());  // south pole
+  const auto at = [&](int i, int j) {
+    return static_cast<std::uint32_t>(1 + (i - 1) * sectors + (j % sectors));
+  };
+  const auto south = static_cast<std::uint32_t>(points.size() - 1);
+  for (int j = 0; j < sectors; ++j) {
+    triangles.push_back({0, at(1, j), at(1, j + 1)});
+    triangles.push_back({south, at(rings - 1, j + 1), at(rings - 1, j)});
+    for (int i = 1; i + 1 < rings; ++i) {
+      triangles.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+      triangles.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+    }
+  }
+}
+
+TEST(ConvexGap, ClimbFindsTheSupportOnAConvexMesh) {
+  std::mt19937_64 rng(0xc11b);
+  std::normal_distribution<double> n(0.0, 1.0);
+  std::vector<Eigen::Vector3d> points;
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+  for (int mesh = 0; mesh < 50; ++mesh) {
+    ellipsoidMesh(rng, 0.0, points, triangles);
+    const ConvexPoints hull(points, triangles);
+    ASSERT_TRUE(hull.hasEdges());
+    for (int k = 0; k < 200; ++k) {
+      const Eigen::Vector3d d(n(rng), n(rng), n(rng));
+      EXPECT_NEAR(d.dot(hull.point(hull.climbSupport(d))), d.dot(hull.point(hull.supportIndex(d))),
+                  1e-12);
+    }
+  }
+}
+
+// Edges only guide the search: on non-convex meshes, where a climb can stop short, every
+// "apart" still has its separating direction, and convex meshes across a slab are found apart.
+TEST(ConvexGap, EdgesChangeNoAnswer) {
+  std::mt19937_64 rng(0xed9e);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::vector<Eigen::Vector3d> pa, pb;
+  std::vector<std::array<std::uint32_t, 3>> ta, tb;
+  int apart = 0, same = 0, trials = 0;
+  for (int trial = 0; trial < 3000; ++trial) {
+    const double bump = trial % 2 == 0 ? 0.0 : 0.3;
+    ellipsoidMesh(rng, bump, pa, ta);
+    ellipsoidMesh(rng, bump, pb, tb);
+    const Eigen::Isometry3d X_AB = randomPose(rng, 0.8);
+    const double gap = 0.05 * unit(rng);
+    Eigen::Vector3d v = Eigen::Vector3d::Zero();
+    const bool with_edges = convexApart(ConvexPoints(pa, ta), ConvexPoints(pb, tb), X_AB, gap, &v);
+    if (with_edges) {
+      ++apart;
+      EXPECT_GT(gapAlong(pa, pb, X_AB, v), gap) << "trial " << trial;
+    }
+    if (bump == 0.0) {
+      ++trials;
+      same += with_edges == convexApart(ConvexPoints(pa), ConvexPoints(pb), X_AB, gap);
+    }
+  }
+  EXPECT_GT(apart, 300);
+  // Convex meshes: the same support values, so (ties aside) the same answers.
+  EXPECT_GE(same, trials - trials / 100);
+}
+
 TEST(ConvexGap, RefusesEmptyAndNonFiniteInput) {
   EXPECT_THROW(ConvexPoints(std::vector<Eigen::Vector3d>{}), InvalidArgument);
   EXPECT_THROW(ConvexPoints({Eigen::Vector3d(0, 0, std::nan(""))}), InvalidArgument);
   EXPECT_THROW(ConvexPoints({Eigen::Vector3d::Zero()}, -1), InvalidArgument);
+  EXPECT_THROW(ConvexPoints({Eigen::Vector3d::Zero()}, {{0, 0, 1}}), InvalidArgument);
   EXPECT_FALSE(convexApart(ConvexPoints(), ConvexPoints({Eigen::Vector3d::Zero()}),
                            Eigen::Isometry3d::Identity(), 0));
 }

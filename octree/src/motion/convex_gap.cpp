@@ -1,5 +1,6 @@
 #include "octomotion/motion/convex_gap.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -25,6 +26,68 @@ ConvexPoints::ConvexPoints(const std::vector<Eigen::Vector3d>& points, double ra
     centroid_ += p;
   }
   centroid_ /= static_cast<double>(points.size());
+}
+
+ConvexPoints::ConvexPoints(const std::vector<Eigen::Vector3d>& points,
+                           const std::vector<std::array<std::uint32_t, 3>>& triangles,
+                           double radius)
+    : ConvexPoints(points, radius) {
+  std::vector<std::vector<std::uint32_t>> adjacent(points.size());
+  for (const auto& t : triangles) {
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t i = t[static_cast<std::size_t>(k)];
+      const std::uint32_t j = t[static_cast<std::size_t>((k + 1) % 3)];
+      if (i >= points.size() || j >= points.size()) {
+        throw InvalidArgument("ConvexPoints: a triangle's index is out of range");
+      }
+      if (i == j) continue;
+      adjacent[i].push_back(j);
+      adjacent[j].push_back(i);
+    }
+  }
+  if (triangles.empty()) return;
+  first_.push_back(0);
+  for (auto& list : adjacent) {
+    std::sort(list.begin(), list.end());
+    list.erase(std::unique(list.begin(), list.end()), list.end());
+    neighbours_.insert(neighbours_.end(), list.begin(), list.end());
+    first_.push_back(static_cast<std::uint32_t>(neighbours_.size()));
+  }
+  for (int k = 0; k < 27; ++k) {
+    const Eigen::Vector3d d(k % 3 - 1, (k / 3) % 3 - 1, k / 9 - 1);
+    start_[static_cast<std::size_t>(k)] = static_cast<std::uint32_t>(supportIndex(d));
+  }
+}
+
+std::size_t ConvexPoints::climbStart(const Eigen::Vector3d& d) const {
+  // Each component to -1, 0 or 1: 0 when under half the largest one.
+  const double half = d.cwiseAbs().maxCoeff() / 2;
+  int k = 0, scale = 1;
+  for (int i = 0; i < 3; ++i, scale *= 3) {
+    k += scale * (d[i] > half ? 2 : d[i] < -half ? 0 : 1);
+  }
+  return start_[static_cast<std::size_t>(k)];
+}
+
+std::size_t ConvexPoints::climbSupport(const Eigen::Vector3d& d) const {
+  if (neighbours_.empty()) return supportIndex(d);
+  const double dx = d.x(), dy = d.y(), dz = d.z();
+  std::size_t at = climbStart(d);
+  double value = x_[at] * dx + y_[at] * dy + z_[at] * dz;
+  // Each step strictly increases the value, so the climb ends.
+  for (;;) {
+    std::size_t next = at;
+    for (std::uint32_t k = first_[at]; k < first_[at + 1]; ++k) {
+      const std::uint32_t j = neighbours_[k];
+      const double v = x_[j] * dx + y_[j] * dy + z_[j] * dz;
+      if (v > value) {
+        value = v;
+        next = j;
+      }
+    }
+    if (next == at) return at;
+    at = next;
+  }
 }
 
 std::size_t ConvexPoints::supportIndex(const Eigen::Vector3d& d) const {
@@ -178,11 +241,18 @@ bool convexApart(const ConvexPoints& a, const ConvexPoints& b, const Eigen::Isom
   Simplex s;
   for (int iteration = 0; iteration < kMaxIterations; ++iteration) {
     // w: the point of a - b that is lowest along v, from each set's support point.
-    const Eigen::Vector3d pa = a.point(a.supportIndex(-v));
-    const Eigen::Vector3d pb = R_AB * b.point(b.supportIndex(R_BA * v)) + p_AB;
-    const Eigen::Vector3d w = pa - pb;
-    const double vw = v.dot(w);
+    std::size_t ia = a.climbSupport(-v);
+    std::size_t ib = b.climbSupport(R_BA * v);
+    Eigen::Vector3d w = a.point(ia) - (R_AB * b.point(ib) + p_AB);
+    double vw = v.dot(w);
     const double v2 = v.squaredNorm();
+    if (vw > 0 && vw * vw > margin * margin * v2 && (a.hasEdges() || b.hasEdges())) {
+      // A climb may stop short of the support: the answer rests on every point.
+      ia = a.supportIndex(-v);
+      ib = b.supportIndex(R_BA * v);
+      w = a.point(ia) - (R_AB * b.point(ib) + p_AB);
+      vw = v.dot(w);
+    }
     if (vw > 0 && vw * vw > margin * margin * v2) {
       if (direction_A != nullptr) *direction_A = v;
       return true;

@@ -2,7 +2,9 @@
 // point set, and the certified test that clears a self pair whose hulls are apart. FCL's
 // triangle tests only report contacts between triangles, which lie inside their mesh's hull,
 // so apart hulls prove what FCL would answer without running it.
-#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <map>
 
 #include <fcl/geometry/bvh/BVH_model.h>
 #include <fcl/geometry/shape/box.h>
@@ -14,19 +16,35 @@ namespace octomotion::detail {
 
 namespace {
 
-// Points in E whose hull holds the element (every triangle FCL tests, or the solid box); false
-// for any other shape.
-bool elementPoints(const fcl::CollisionGeometryd& geometry, const Eigen::Isometry3d& X_LE,
-                   std::vector<Eigen::Vector3d>& points_L) {
+// A link's points in L, each once (meshes repeat a vertex per triangle), and the triangles over
+// them of its meshes.
+struct HullPoints {
+  std::vector<Eigen::Vector3d> points_L;
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+  std::map<std::array<double, 3>, std::uint32_t> index;
+
+  std::uint32_t add(const Eigen::Vector3d& p_L) {
+    const auto [it, added] = index.emplace(std::array<double, 3>{p_L.x(), p_L.y(), p_L.z()},
+                                           static_cast<std::uint32_t>(points_L.size()));
+    if (added) points_L.push_back(p_L);
+    return it->second;
+  }
+};
+
+// Adds the points whose hull holds the element (every triangle FCL tests, or the solid box);
+// false for any other shape.
+bool addElement(const fcl::CollisionGeometryd& geometry, const Eigen::Isometry3d& X_LE,
+                HullPoints& hull) {
   if (geometry.getObjectType() == fcl::OT_BVH) {
     const auto* mesh = dynamic_cast<const fcl::BVHModel<fcl::OBBRSSd>*>(&geometry);
     if (mesh == nullptr || mesh->vertices == nullptr || mesh->tri_indices == nullptr) return false;
-    std::vector<bool> used(static_cast<std::size_t>(mesh->num_vertices), false);
     for (int t = 0; t < mesh->num_tris; ++t) {
-      for (int k = 0; k < 3; ++k) used[mesh->tri_indices[t][k]] = true;
-    }
-    for (std::size_t v = 0; v < used.size(); ++v) {
-      if (used[v]) points_L.push_back(X_LE * mesh->vertices[v]);
+      std::array<std::uint32_t, 3> triangle{};
+      for (int k = 0; k < 3; ++k) {
+        triangle[static_cast<std::size_t>(k)] =
+            hull.add(X_LE * mesh->vertices[mesh->tri_indices[t][k]]);
+      }
+      hull.triangles.push_back(triangle);
     }
     return true;
   }
@@ -35,7 +53,7 @@ bool elementPoints(const fcl::CollisionGeometryd& geometry, const Eigen::Isometr
     for (int corner = 0; corner < 8; ++corner) {
       const Eigen::Vector3d sign((corner & 1) ? 1 : -1, (corner & 2) ? 1 : -1,
                                  (corner & 4) ? 1 : -1);
-      points_L.push_back(X_LE * Eigen::Vector3d(half.cwiseProduct(sign)));
+      hull.add(X_LE * Eigen::Vector3d(half.cwiseProduct(sign)));
     }
     return true;
   }
@@ -54,20 +72,19 @@ std::vector<ConvexPoints> linkHulls(const fcl_internal::RobotGeometry& robot,
     const std::vector<CollisionElement>& collision = model.link(static_cast<int>(l)).collision;
     // RobotGeometry makes one element per collision element, in order.
     if (link_elements[l].empty() || link_elements[l].size() != collision.size()) continue;
-    std::vector<Eigen::Vector3d> points_L;
+    HullPoints hull;
     bool all = true;
     for (std::size_t k = 0; k < collision.size() && all; ++k) {
       const fcl::CollisionObjectd& element = prototypes.objects[link_elements[l][k]];
-      all = elementPoints(*element.collisionGeometry(), collision[k].X_LE, points_L);
+      all = addElement(*element.collisionGeometry(), collision[k].X_LE, hull);
     }
-    if (!all || points_L.empty()) continue;
-    // Meshes repeat a vertex per triangle: each point once keeps the support loop short.
-    std::sort(points_L.begin(), points_L.end(),
-              [](const Eigen::Vector3d& p, const Eigen::Vector3d& q) {
-                return std::lexicographical_compare(p.data(), p.data() + 3, q.data(), q.data() + 3);
-              });
-    points_L.erase(std::unique(points_L.begin(), points_L.end()), points_L.end());
-    hulls[l] = ConvexPoints(points_L);
+    if (!all || hull.points_L.empty()) continue;
+    // Edges help the support search only when they connect every point (one mesh).
+    if (collision.size() == 1 && !hull.triangles.empty()) {
+      hulls[l] = ConvexPoints(hull.points_L, hull.triangles);
+    } else {
+      hulls[l] = ConvexPoints(hull.points_L);
+    }
   }
   return hulls;
 }
