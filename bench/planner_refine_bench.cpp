@@ -5,8 +5,8 @@
 // states), the share of FCL-free states it rejects (false positives), the contacts it misses,
 // and FCL's mean over its own. A plain program like planner_self_pair_tables_bench; needs
 // ../shared/data (MotionBenchMaker problems and the Panda).
-// For the refined rows also, per check: the contacts certain without FCL, and the links (against
-// the environment) and link pairs FCL decided.
+// For the refined rows also, per check: the contacts certain without FCL, the links (against
+// the environment) and link pairs FCL decided, and the link pairs cleared by their hulls.
 // SETTINGS picks rows (digits 0-3, e.g. 01 for a quick profile without the self-pair tables'
 // build). Usage: build/bench/planner_refine_bench [STATES] [SETS] [RESOLUTION] [SETTINGS]
 //        (default 5000 4 0.01 0123)
