@@ -5,8 +5,8 @@
 // states), the share of FCL-free states it rejects (false positives), the contacts it misses,
 // and FCL's mean over its own. A plain program like planner_self_pair_tables_bench; needs
 // ../shared/data (MotionBenchMaker problems and the Panda).
-// For the refined rows also, per check: the contacts certain without FCL, and the links (against
-// the environment) and link pairs FCL decided.
+// For the refined rows also, per check: the contacts certain without FCL, the links (against
+// the environment) and link pairs FCL decided, and the link pairs cleared by their hulls.
 // SETTINGS picks rows (digits 0-3, e.g. 01 for a quick profile without the self-pair tables'
 // build). Usage: build/bench/planner_refine_bench [STATES] [SETS] [RESOLUTION] [SETTINGS]
 //        (default 5000 4 0.01 0123)
@@ -115,7 +115,7 @@ int run(int argc, char** argv) {
         check_seconds = seconds(t0, Clock::now());
         const RefineCounts end = model.refineCounts(scratch);
         counts = {end.certain_contacts - start.certain_contacts, end.fcl_links - start.fcl_links,
-                  end.fcl_pairs - start.fcl_pairs};
+                  end.fcl_pairs - start.fcl_pairs, end.hull_apart_pairs - start.hull_apart_pairs};
       }
       const double mean = 1e6 * check_seconds / count;
       std::printf("  %-22s mean %8.3f us, FP %5.2f %%, missed %d, FCL / this %5.2f, build %.2f s\n",
@@ -126,10 +126,13 @@ int run(int argc, char** argv) {
                   mean, 100.0 * false_positives / std::max(free_states, 1), missed, fcl_mean / mean,
                   build);
       if (refine == RefineMode::kExact) {
-        std::printf("  %-22s per check: certain contacts %.3f, FCL links %.3f, FCL pairs %.3f\n",
-                    "", static_cast<double>(counts.certain_contacts) / count,
-                    static_cast<double>(counts.fcl_links) / count,
-                    static_cast<double>(counts.fcl_pairs) / count);
+        std::printf(
+            "  %-22s per check: certain contacts %.3f, FCL links %.3f, FCL pairs %.3f, "
+            "hull-apart pairs %.3f\n",
+            "", static_cast<double>(counts.certain_contacts) / count,
+            static_cast<double>(counts.fcl_links) / count,
+            static_cast<double>(counts.fcl_pairs) / count,
+            static_cast<double>(counts.hull_apart_pairs) / count);
       }
     }
   }

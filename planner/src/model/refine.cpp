@@ -144,6 +144,7 @@ RefineData::RefineData(const RobotModel& model, const EnvironmentGeometry& envir
   for (const fcl::CollisionObjectd& element : prototypes.objects) {
     element_witnesses_E.push_back(witnessesOf(*element.collisionGeometry()));
   }
+  link_hulls_L = linkHulls(*robot, model, link_elements);
 }
 
 RefineScratch& refineScratch(const RefineData& data, const RobotModel& model, std::uint64_t owner,
@@ -254,14 +255,24 @@ bool environmentOctreePass(const CollisionModelParts& parts, const RefineData& d
 
 // The octree's pass over the self half: the checked pairs whose voxels meet, in
 // r.uncertain_pairs.
-void selfOctreePass(const CollisionModelParts& parts, RefineScratch& r, CheckerPath path,
-                    CheckScratch& scratch) {
+void selfOctreePass(const CollisionModelParts& parts, const RefineData& data, RefineScratch& r,
+                    CheckerPath path, CheckScratch& scratch) {
   const LinkModels& links = parts.links;
+  const std::vector<SelfPair>& pairs = parts.self.pairs;
   r.uncertain_pairs.clear();
-  parts.self.confirmedInCollision(links, path, scratch, [&](const SelfPair& p) {
-    r.uncertain_pairs.emplace_back(links.links[p.a].link, links.links[p.b].link);
-    return false;
-  });
+  r.pair_directions.resize(pairs.size(), Eigen::Vector3d::Zero());
+  parts.self.confirmedInCollision(
+      links, path, scratch,
+      [&](std::size_t i) {
+        const bool apart = refineHullsApart(data, scratch.robot, links.links[pairs[i].a].link,
+                                            links.links[pairs[i].b].link, r.pair_directions[i]);
+        r.counts.hull_apart_pairs += apart;
+        return apart;
+      },
+      [&](const SelfPair& p) {
+        r.uncertain_pairs.emplace_back(links.links[p.a].link, links.links[p.b].link);
+        return false;
+      });
 }
 
 double refineEnvironmentDistance(const RefineData& data, RefineScratch& r, const RobotData& robot) {
@@ -298,7 +309,7 @@ bool OctreeCollisionModel::refinedEnvironmentInCollision(CheckerPath path,
 
 bool OctreeCollisionModel::refinedSelfInCollision(CheckerPath path, CheckScratch& scratch) const {
   detail::RefineScratch& r = detail::refineScratch(*refine_, robot_, id_, scratch.refine);
-  detail::selfOctreePass(*parts_, r, path, scratch);
+  detail::selfOctreePass(*parts_, *refine_, r, path, scratch);
   return detail::refineUncertainPairsHit(*refine_, r, scratch.robot);
 }
 
@@ -311,7 +322,7 @@ bool OctreeCollisionModel::refinedLinksInCollision(CheckerPath path, CheckScratc
       detail::refineUncertainLinksHit(*refine_, r, scratch.robot)) {
     return true;
   }
-  detail::selfOctreePass(*parts_, r, path, scratch);
+  detail::selfOctreePass(*parts_, *refine_, r, path, scratch);
   return detail::refineUncertainPairsHit(*refine_, r, scratch.robot);
 }
 

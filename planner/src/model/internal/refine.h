@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "../../robot/internal/fcl_robot.h"
+#include "octomotion/motion/convex_gap.h"
 #include "octomotion/planner/model/collision_model.h"
 #include "octomotion/planner/scene/environment_geometry.h"
 
@@ -48,7 +49,15 @@ struct RefineData {
   // vertices) or, for a primitive, its centre (inside its solid). Certain contacts.
   std::vector<std::vector<Eigen::Vector3d>> element_witnesses_E;
   bool has_primitives = false;  // some object is a primitive (certain contacts can exist)
+  // Per robot link, in its frame: the hull of its elements' points (mesh vertices, box
+  // corners); empty for a link with another shape. Two links whose hulls are apart cannot touch,
+  // so a checked pair is cleared before any voxel or FCL test (refineHullsApart).
+  std::vector<ConvexPoints> link_hulls_L;
 };
+
+// Hulls closer than this are left to the octree and FCL: far above rounding in the poses,
+// far below any gap that matters.
+inline constexpr double kHullGap = 1e-5;
 
 struct RefineScratch {
   std::uint64_t owner = 0;  // id() of the model it was made for
@@ -61,6 +70,9 @@ struct RefineScratch {
   // the environment, link pairs.
   std::vector<int> uncertain_links;
   std::vector<std::pair<int, int>> uncertain_pairs;
+  // Per self pair (SelfCollision::pairs): the last direction that separated its hulls, tried
+  // first (a planner's nearby states are often separated the same way).
+  std::vector<Eigen::Vector3d> pair_directions;
   RefineCounts counts;
 };
 
@@ -83,6 +95,15 @@ bool refinePairHits(const RefineData& data, RefineScratch& r, const RobotData& r
 // order, stopping at the first contact.
 bool refineUncertainLinksHit(const RefineData& data, RefineScratch& r, const RobotData& robot);
 bool refineUncertainPairsHit(const RefineData& data, RefineScratch& r, const RobotData& robot);
+// Each link's hull in its frame (RefineData::link_hulls_L).
+std::vector<ConvexPoints> linkHulls(const fcl_internal::RobotGeometry& robot,
+                                    const RobotModel& model,
+                                    const std::vector<std::vector<std::size_t>>& link_elements);
+// The hulls of link_a and link_b (both with one) are kHullGap apart at the poses in `robot`, so
+// FCL finds no contact between their elements. `direction` starts the search and keeps the
+// separating direction.
+bool refineHullsApart(const RefineData& data, const RobotData& robot, int link_a, int link_b,
+                      Eigen::Vector3d& direction);
 // FCL's exact distance from the robot's elements to the objects (0 in contact).
 double refineEnvironmentDistance(const RefineData& data, RefineScratch& r, const RobotData& robot);
 

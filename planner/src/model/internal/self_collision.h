@@ -76,15 +76,18 @@ class SelfCollision {
     }
     return pairsInCollision(links, path, scratch);
   }
-  // RefineMode::kExact: like inCollision, but a pair whose stages hit counts only when
-  // `confirm(pair)` (FCL on the two links) says so; the loop goes on past unconfirmed pairs.
-  // Always the pairs loop (the broad phase gives the same candidates).
-  template <class Confirm>
+  // RefineMode::kExact: like inCollision, but a pair whose spheres meet is skipped when
+  // `certified_free(pair index)` proves it free (exact geometry), and a pair whose stages hit
+  // counts only when `confirm(pair)` (FCL on the two links) says so; the loop goes on past
+  // unconfirmed pairs. Always the pairs loop (the broad phase gives the same candidates).
+  template <class Free, class Confirm>
   bool confirmedInCollision(const LinkModels& links, CheckerPath path, CheckScratch& scratch,
-                            const Confirm& confirm) const {
+                            const Free& certified_free, const Confirm& confirm) const {
     placeCentres(links, scratch);
-    for (const SelfPair& p : pairs) {
+    for (std::size_t i = 0; i < pairs.size(); ++i) {
+      const SelfPair& p = pairs[i];
       if (spheresMeet(p, scratch.centres_W[p.a], scratch.centres_W[p.b]) &&
+          pairBoxesMeet(p, links, scratch) && !certified_free(i) &&
           pairStagesHit(p, links, path, scratch) && confirm(p)) {
         return true;
       }
@@ -118,6 +121,15 @@ class SelfCollision {
     const SelfPair& p = pairs[pair];
     return spheresMeet(p, scratch.centres_W[p.a], scratch.centres_W[p.b]) &&
            pairStagesHit(p, links, path, scratch);
+  }
+  // The boxes of the pair's black voxels overlap (linksHit's first test).
+  bool pairBoxesMeet(const SelfPair& p, const LinkModels& links,
+                     const CheckScratch& scratch) const {
+    const Eigen::Isometry3d& X_WA = scratch.robot.linkPose(links.links[p.a].link);
+    const Eigen::Matrix3d R_AB =
+        X_WA.linear().transpose() * scratch.robot.linkPose(links.links[p.b].link).linear();
+    return boxesMeet(*links.self_voxels[p.a], X_WA, R_AB, *links.self_voxels[p.b],
+                     scratch.centres_W[p.b]);
   }
   // A pair whose spheres meet: its joint-space table when it has one, then the boxes and trees
   // of the self trees.

@@ -306,6 +306,9 @@ struct RefineCounts {
   std::uint64_t certain_contacts = 0;
   std::uint64_t fcl_links = 0;
   std::uint64_t fcl_pairs = 0;
+  // Link pairs cleared by their hulls (the convex hulls of their meshes' vertices apart), before
+  // any voxel or FCL test.
+  std::uint64_t hull_apart_pairs = 0;
 };
 
 // RefineMode::kExact: the posed FCL objects of one thread, opaque here, made by the first

@@ -1,0 +1,66 @@
+// Certified separation of two convex sets, each the convex hull of its points grown by a radius
+// (a mesh's vertices, a box's corners, a ball's centre), by GJK (Gilbert, Johnson & Keerthi
+// 1988) on their Minkowski difference. GJK only proposes a direction; the answer "apart" rests
+// on the two support values computed for that direction over every point, so a plane between
+// the sets is proven whatever the iteration did. Used by exact refine mode to clear a robot
+// link pair before any voxel or mesh test: two meshes whose vertex hulls are apart cannot share
+// a triangle contact.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+namespace octomotion {
+
+class ConvexPoints {
+ public:
+  ConvexPoints() = default;
+  // The hull of `points` grown by `radius` (>= 0). Throws InvalidArgument when empty.
+  explicit ConvexPoints(const std::vector<Eigen::Vector3d>& points, double radius = 0);
+  // The same, with the edges of triangles over the points (a mesh's): support points are then
+  // found by climbing along edges, which for a convex mesh visits a few points instead of all.
+  // Any triangles are accepted (a non-convex mesh only makes the climb stop short, and
+  // convexApart checks every answer over all points). Throws InvalidArgument for an index out
+  // of range.
+  ConvexPoints(const std::vector<Eigen::Vector3d>& points,
+               const std::vector<std::array<std::uint32_t, 3>>& triangles, double radius = 0);
+
+  bool empty() const { return x_.empty(); }
+  std::size_t size() const { return x_.size(); }
+  double radius() const { return radius_; }
+  Eigen::Vector3d point(std::size_t i) const { return {x_[i], y_[i], z_[i]}; }
+  // A point of the (ungrown) hull that maximises d . p: one of the points.
+  std::size_t supportIndex(const Eigen::Vector3d& d) const;
+  // From the support point of the nearest of 26 fixed directions, the neighbour that is highest
+  // along d, as long as one is higher than the current point: a support point when the points
+  // are a convex mesh's vertices, a local maximum otherwise. supportIndex when there are no
+  // edges.
+  std::size_t climbSupport(const Eigen::Vector3d& d) const;
+  bool hasEdges() const { return !neighbours_.empty(); }
+  const Eigen::Vector3d& centroid() const { return centroid_; }
+
+ private:
+  std::vector<double> x_, y_, z_;  // split by coordinate: the support loop vectorises
+  // Neighbours of point i: neighbours_[first_[i] .. first_[i + 1]).
+  std::vector<std::uint32_t> first_, neighbours_;
+  // With edges: the support point of each of the 26 directions with components in {-1, 0, 1},
+  // where climbs start (climbStart).
+  std::array<std::uint32_t, 27> start_{};
+  std::size_t climbStart(const Eigen::Vector3d& d) const;
+  double radius_ = 0;
+  Eigen::Vector3d centroid_ = Eigen::Vector3d::Zero();
+};
+
+// True only when a plane leaves `a` and `b` (b placed in a's frame by X_AB) more than `gap`
+// apart: every point of a at least `gap` from every point of b along that plane's normal.
+// False when they overlap, are closer than `gap`, or GJK gives up (it stops after a fixed number
+// of iterations): false never claims a contact. `direction_A`, when given, starts the search
+// (a direction from b towards a, e.g. the one a previous call returned) and receives the
+// separating one on success.
+bool convexApart(const ConvexPoints& a, const ConvexPoints& b, const Eigen::Isometry3d& X_AB,
+                 double gap, Eigen::Vector3d* direction_A = nullptr);
+
+}  // namespace octomotion

@@ -1,0 +1,269 @@
+#include "octomotion/motion/convex_gap.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+#include "octomotion/error.h"
+
+namespace octomotion {
+
+ConvexPoints::ConvexPoints(const std::vector<Eigen::Vector3d>& points, double radius)
+    : radius_(radius) {
+  if (points.empty()) throw InvalidArgument("ConvexPoints: no points");
+  if (!(radius >= 0) || !std::isfinite(radius)) {
+    throw InvalidArgument("ConvexPoints: the radius must be finite and >= 0");
+  }
+  x_.reserve(points.size());
+  y_.reserve(points.size());
+  z_.reserve(points.size());
+  for (const Eigen::Vector3d& p : points) {
+    if (!p.allFinite()) throw InvalidArgument("ConvexPoints: a point is not finite");
+    x_.push_back(p.x());
+    y_.push_back(p.y());
+    z_.push_back(p.z());
+    centroid_ += p;
+  }
+  centroid_ /= static_cast<double>(points.size());
+}
+
+ConvexPoints::ConvexPoints(const std::vector<Eigen::Vector3d>& points,
+                           const std::vector<std::array<std::uint32_t, 3>>& triangles,
+                           double radius)
+    : ConvexPoints(points, radius) {
+  std::vector<std::vector<std::uint32_t>> adjacent(points.size());
+  for (const auto& t : triangles) {
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t i = t[static_cast<std::size_t>(k)];
+      const std::uint32_t j = t[static_cast<std::size_t>((k + 1) % 3)];
+      if (i >= points.size() || j >= points.size()) {
+        throw InvalidArgument("ConvexPoints: a triangle's index is out of range");
+      }
+      if (i == j) continue;
+      adjacent[i].push_back(j);
+      adjacent[j].push_back(i);
+    }
+  }
+  if (triangles.empty()) return;
+  first_.push_back(0);
+  for (auto& list : adjacent) {
+    std::sort(list.begin(), list.end());
+    list.erase(std::unique(list.begin(), list.end()), list.end());
+    neighbours_.insert(neighbours_.end(), list.begin(), list.end());
+    first_.push_back(static_cast<std::uint32_t>(neighbours_.size()));
+  }
+  for (int k = 0; k < 27; ++k) {
+    const Eigen::Vector3d d(k % 3 - 1, (k / 3) % 3 - 1, k / 9 - 1);
+    start_[static_cast<std::size_t>(k)] = static_cast<std::uint32_t>(supportIndex(d));
+  }
+}
+
+std::size_t ConvexPoints::climbStart(const Eigen::Vector3d& d) const {
+  // Each component to -1, 0 or 1: 0 when under half the largest one.
+  const double half = d.cwiseAbs().maxCoeff() / 2;
+  int k = 0, scale = 1;
+  for (int i = 0; i < 3; ++i, scale *= 3) {
+    k += scale * (d[i] > half ? 2 : d[i] < -half ? 0 : 1);
+  }
+  return start_[static_cast<std::size_t>(k)];
+}
+
+std::size_t ConvexPoints::climbSupport(const Eigen::Vector3d& d) const {
+  if (neighbours_.empty()) return supportIndex(d);
+  const double dx = d.x(), dy = d.y(), dz = d.z();
+  std::size_t at = climbStart(d);
+  double value = x_[at] * dx + y_[at] * dy + z_[at] * dz;
+  // Each step strictly increases the value, so the climb ends.
+  for (;;) {
+    std::size_t next = at;
+    for (std::uint32_t k = first_[at]; k < first_[at + 1]; ++k) {
+      const std::uint32_t j = neighbours_[k];
+      const double v = x_[j] * dx + y_[j] * dy + z_[j] * dz;
+      if (v > value) {
+        value = v;
+        next = j;
+      }
+    }
+    if (next == at) return at;
+    at = next;
+  }
+}
+
+std::size_t ConvexPoints::supportIndex(const Eigen::Vector3d& d) const {
+  const double dx = d.x(), dy = d.y(), dz = d.z();
+  std::size_t best = 0;
+  double best_value = -std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < x_.size(); ++i) {
+    const double value = x_[i] * dx + y_[i] * dy + z_[i] * dz;
+    if (value > best_value) {
+      best_value = value;
+      best = i;
+    }
+  }
+  return best;
+}
+
+namespace {
+
+// GJK's simplex on the Minkowski difference a - b: its corners, newest last.
+struct Simplex {
+  std::array<Eigen::Vector3d, 4> p = {Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(),
+                                      Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
+  int n = 0;
+};
+
+// The point of triangle (a, b, c) closest to the origin, and the corners of the feature it lies
+// on (Ericson, Real-Time Collision Detection §5.1.5, with the query point at the origin).
+Eigen::Vector3d closestOnTriangle(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                  const Eigen::Vector3d& c, Simplex& feature) {
+  const Eigen::Vector3d ab = b - a, ac = c - a;
+  const double d1 = -ab.dot(a), d2 = -ac.dot(a);
+  if (d1 <= 0 && d2 <= 0) {
+    feature.p[0] = a;
+    feature.n = 1;
+    return a;
+  }
+  const double d3 = -ab.dot(b), d4 = -ac.dot(b);
+  if (d3 >= 0 && d4 <= d3) {
+    feature.p[0] = b;
+    feature.n = 1;
+    return b;
+  }
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) {
+    feature.p[0] = a;
+    feature.p[1] = b;
+    feature.n = 2;
+    return a + d1 / (d1 - d3) * ab;
+  }
+  const double d5 = -ab.dot(c), d6 = -ac.dot(c);
+  if (d6 >= 0 && d5 <= d6) {
+    feature.p[0] = c;
+    feature.n = 1;
+    return c;
+  }
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) {
+    feature.p[0] = a;
+    feature.p[1] = c;
+    feature.n = 2;
+    return a + d2 / (d2 - d6) * ac;
+  }
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
+    feature.p[0] = b;
+    feature.p[1] = c;
+    feature.n = 2;
+    return b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b);
+  }
+  const double denom = 1 / (va + vb + vc);
+  feature.p[0] = a;
+  feature.p[1] = b;
+  feature.p[2] = c;
+  feature.n = 3;
+  return a + ab * (vb * denom) + ac * (vc * denom);
+}
+
+// The origin and `opposite` lie strictly on different sides of the plane through a, b, c.
+bool originOutsideFace(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+                       const Eigen::Vector3d& opposite) {
+  const Eigen::Vector3d n = (b - a).cross(c - a);
+  return (-a).dot(n) * (opposite - a).dot(n) < 0;
+}
+
+// Replaces the simplex by the smallest feature holding its point closest to the origin and
+// returns that point; false when the origin is inside a tetrahedron or the simplex is
+// degenerate (GJK then stops: not proven apart).
+bool reduce(Simplex& s, Eigen::Vector3d& v) {
+  if (s.n == 1) {
+    v = s.p[0];
+    return true;
+  }
+  if (s.n == 2) {
+    const Eigen::Vector3d a = s.p[0], ab = s.p[1] - s.p[0];
+    const double len2 = ab.squaredNorm();
+    if (!(len2 > 0)) return false;
+    const double t = -a.dot(ab) / len2;
+    if (t <= 0) {
+      s.n = 1;
+    } else if (t >= 1) {
+      s.p[0] = s.p[1];
+      s.n = 1;
+    }
+    v = t <= 0 ? a : t >= 1 ? s.p[0] : Eigen::Vector3d(a + t * ab);
+    return true;
+  }
+  if (s.n == 3) {
+    Simplex feature;
+    v = closestOnTriangle(s.p[0], s.p[1], s.p[2], feature);
+    s = feature;
+    return true;
+  }
+  // Tetrahedron: the best of the faces the origin lies outside of; none means inside.
+  const Eigen::Vector3d &a = s.p[0], &b = s.p[1], &c = s.p[2], &d = s.p[3];
+  const std::array<std::array<const Eigen::Vector3d*, 4>, 4> faces = {
+      {{&a, &b, &c, &d}, {&a, &c, &d, &b}, {&a, &d, &b, &c}, {&b, &d, &c, &a}}};
+  double best = std::numeric_limits<double>::infinity();
+  Simplex best_feature;
+  for (const auto& f : faces) {
+    if (!originOutsideFace(*f[0], *f[1], *f[2], *f[3])) continue;
+    Simplex feature;
+    const Eigen::Vector3d q = closestOnTriangle(*f[0], *f[1], *f[2], feature);
+    if (q.squaredNorm() < best) {
+      best = q.squaredNorm();
+      best_feature = feature;
+      v = q;
+    }
+  }
+  if (best_feature.n == 0) return false;
+  s = best_feature;
+  return true;
+}
+
+constexpr int kMaxIterations = 32;
+
+}  // namespace
+
+bool convexApart(const ConvexPoints& a, const ConvexPoints& b, const Eigen::Isometry3d& X_AB,
+                 double gap, Eigen::Vector3d* direction_A) {
+  if (a.empty() || b.empty()) return false;
+  const Eigen::Matrix3d R_AB = X_AB.linear();
+  const Eigen::Matrix3d R_BA = R_AB.transpose();
+  const Eigen::Vector3d p_AB = X_AB.translation();
+  // Apart along v (not unit) when min over a, b of v . (a - b) exceeds margin * |v|.
+  const double margin = gap + a.radius() + b.radius();
+  Eigen::Vector3d v = a.centroid() - (R_AB * b.centroid() + p_AB);
+  if (direction_A != nullptr && direction_A->allFinite() && direction_A->squaredNorm() > 0) {
+    v = *direction_A;
+  }
+  if (!(v.squaredNorm() > 0)) v = Eigen::Vector3d::UnitX();
+  Simplex s;
+  for (int iteration = 0; iteration < kMaxIterations; ++iteration) {
+    // w: the point of a - b that is lowest along v, from each set's support point.
+    std::size_t ia = a.climbSupport(-v);
+    std::size_t ib = b.climbSupport(R_BA * v);
+    Eigen::Vector3d w = a.point(ia) - (R_AB * b.point(ib) + p_AB);
+    double vw = v.dot(w);
+    const double v2 = v.squaredNorm();
+    if (vw > 0 && vw * vw > margin * margin * v2 && (a.hasEdges() || b.hasEdges())) {
+      // A climb may stop short of the support: the answer rests on every point.
+      ia = a.supportIndex(-v);
+      ib = b.supportIndex(R_BA * v);
+      w = a.point(ia) - (R_AB * b.point(ib) + p_AB);
+      vw = v.dot(w);
+    }
+    if (vw > 0 && vw * vw > margin * margin * v2) {
+      if (direction_A != nullptr) *direction_A = v;
+      return true;
+    }
+    // No progress left: |v| is the hulls' distance up to rounding, and it is not enough.
+    if (v2 - vw <= 1e-9 * v2 || s.n == 4) return false;
+    s.p[static_cast<std::size_t>(s.n++)] = w;
+    // |v| bounds the distance from above: at most the margin, they cannot be apart by it.
+    if (!reduce(s, v) || !(v.squaredNorm() > margin * margin)) return false;
+  }
+  return false;
+}
+
+}  // namespace octomotion

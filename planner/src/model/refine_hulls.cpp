@@ -1,0 +1,101 @@
+// RefineMode::kExact's hull filter (internal/refine.h): each link's elements as one convex
+// point set, and the certified test that clears a self pair whose hulls are apart. FCL's
+// triangle tests only report contacts between triangles, which lie inside their mesh's hull,
+// so apart hulls prove what FCL would answer without running it.
+#include <array>
+#include <cstdint>
+#include <map>
+
+#include <fcl/geometry/bvh/BVH_model.h>
+#include <fcl/geometry/shape/box.h>
+#include <fcl/math/bv/OBBRSS.h>
+
+#include "internal/refine.h"
+
+namespace octomotion::detail {
+
+namespace {
+
+// A link's points in L, each once (meshes repeat a vertex per triangle), and the triangles over
+// them of its meshes.
+struct HullPoints {
+  std::vector<Eigen::Vector3d> points_L;
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+  std::map<std::array<double, 3>, std::uint32_t> index;
+
+  std::uint32_t add(const Eigen::Vector3d& p_L) {
+    const auto [it, added] = index.emplace(std::array<double, 3>{p_L.x(), p_L.y(), p_L.z()},
+                                           static_cast<std::uint32_t>(points_L.size()));
+    if (added) points_L.push_back(p_L);
+    return it->second;
+  }
+};
+
+// Adds the points whose hull holds the element (every triangle FCL tests, or the solid box);
+// false for any other shape.
+bool addElement(const fcl::CollisionGeometryd& geometry, const Eigen::Isometry3d& X_LE,
+                HullPoints& hull) {
+  if (geometry.getObjectType() == fcl::OT_BVH) {
+    const auto* mesh = dynamic_cast<const fcl::BVHModel<fcl::OBBRSSd>*>(&geometry);
+    if (mesh == nullptr || mesh->vertices == nullptr || mesh->tri_indices == nullptr) return false;
+    for (int t = 0; t < mesh->num_tris; ++t) {
+      std::array<std::uint32_t, 3> triangle{};
+      for (int k = 0; k < 3; ++k) {
+        triangle[static_cast<std::size_t>(k)] =
+            hull.add(X_LE * mesh->vertices[mesh->tri_indices[t][k]]);
+      }
+      hull.triangles.push_back(triangle);
+    }
+    return true;
+  }
+  if (geometry.getNodeType() == fcl::GEOM_BOX) {
+    const Eigen::Vector3d half = static_cast<const fcl::Boxd&>(geometry).side / 2;
+    for (int corner = 0; corner < 8; ++corner) {
+      const Eigen::Vector3d sign((corner & 1) ? 1 : -1, (corner & 2) ? 1 : -1,
+                                 (corner & 4) ? 1 : -1);
+      hull.add(X_LE * Eigen::Vector3d(half.cwiseProduct(sign)));
+    }
+    return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+std::vector<ConvexPoints> linkHulls(const fcl_internal::RobotGeometry& robot,
+                                    const RobotModel& model,
+                                    const std::vector<std::vector<std::size_t>>& link_elements) {
+  fcl_internal::RobotScratch prototypes;
+  robot.initScratch(model, prototypes);
+  std::vector<ConvexPoints> hulls(link_elements.size());
+  for (std::size_t l = 0; l < link_elements.size(); ++l) {
+    const std::vector<CollisionElement>& collision = model.link(static_cast<int>(l)).collision;
+    // RobotGeometry makes one element per collision element, in order.
+    if (link_elements[l].empty() || link_elements[l].size() != collision.size()) continue;
+    HullPoints hull;
+    bool all = true;
+    for (std::size_t k = 0; k < collision.size() && all; ++k) {
+      const fcl::CollisionObjectd& element = prototypes.objects[link_elements[l][k]];
+      all = addElement(*element.collisionGeometry(), collision[k].X_LE, hull);
+    }
+    if (!all || hull.points_L.empty()) continue;
+    // Edges help the support search only when they connect every point (one mesh).
+    if (collision.size() == 1 && !hull.triangles.empty()) {
+      hulls[l] = ConvexPoints(hull.points_L, hull.triangles);
+    } else {
+      hulls[l] = ConvexPoints(hull.points_L);
+    }
+  }
+  return hulls;
+}
+
+bool refineHullsApart(const RefineData& data, const RobotData& robot, int link_a, int link_b,
+                      Eigen::Vector3d& direction) {
+  const ConvexPoints& a = data.link_hulls_L[static_cast<std::size_t>(link_a)];
+  const ConvexPoints& b = data.link_hulls_L[static_cast<std::size_t>(link_b)];
+  if (a.empty() || b.empty()) return false;
+  const Eigen::Isometry3d X_AB = robot.linkPose(link_a).inverse() * robot.linkPose(link_b);
+  return convexApart(a, b, X_AB, kHullGap, &direction);
+}
+
+}  // namespace octomotion::detail
