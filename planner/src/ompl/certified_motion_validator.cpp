@@ -376,6 +376,9 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
       const bool environment = !in.b_valid || !linksFree(in, in.links_done);
       const bool self = !in.b_valid || !pairsFree(in, in.pairs_done);
       const double m = 0.5 * (in.a + in.b);
+      // The midpoint's clearances serve only the halves and their parts: a clearance above a
+      // link's bound over a half decides nothing more (and a capped value is still a bound).
+      for (int l : t.active_links) t.caps[static_cast<std::size_t>(l)] = t.link_bound[l] * 0.5 * s;
       std::size_t sm = 0;
       const bool m_valid = evaluate(m, environment || !self, self, 0.5 * max_link * s > resolution_,
                                     0.5 * max_pair * s > resolution_, sm);
