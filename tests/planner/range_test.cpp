@@ -70,13 +70,14 @@ TEST(PlannerRange, SetsPlannersThatHaveOneAndRefusesOthers) {
   }
 }
 
-TEST(PlannerRange, ArmsGetTheArmRangeUnlessTheSceneOrCommandLineSaysOtherwise) {
+TEST(PlannerRange, TheCommandLineSetsTheRangeAndPlannersWithoutOneRefuseIt) {
   ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
   const std::string scene = kSource + "/robots/scenes/bookshelf.yaml";
   auto range = [](const PlanningScene& s) {
     return std::dynamic_pointer_cast<og::RRTConnect>(s.setup->getPlanner())->getRange();
   };
-  EXPECT_DOUBLE_EQ(range(loadPlanningScene(scene)), kArmPlannerRange);
+  const double own = range(loadPlanningScene(scene));  // OMPL's: a fifth of the extent
+  EXPECT_GT(own, 0.3);
   SceneOverrides overrides;
   overrides.range = 0.3;
   EXPECT_DOUBLE_EQ(range(loadPlanningScene(scene, overrides)), 0.3);

@@ -462,11 +462,7 @@ void setUpOmpl(PlanningScene& scene, bool free_flying, double robot_diagonal, do
   }
   scene.setup->setPlanner(makePlanner(spec.problem.planner, si));
   try {
-    std::optional<double> range = spec.problem.range;
-    if (!range && !free_flying && scene.setup->getPlanner()->params().hasParam("range")) {
-      range = kArmPlannerRange;
-    }
-    setPlannerRange(*scene.setup->getPlanner(), range);
+    setPlannerRange(*scene.setup->getPlanner(), spec.problem.range);
   } catch (const InvalidArgument& e) {
     throw FileError(spec.path, std::string("problem.range: ") + e.what());
   }

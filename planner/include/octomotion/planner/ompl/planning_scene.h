@@ -190,13 +190,8 @@ ompl::base::PlannerPtr makePlanner(const std::string& name,
 // distance) to `range` when given; else leaves the planner's own default (OMPL: a fifth of the
 // space's extent). InvalidArgument when `range` is not positive and finite, or when the planner
 // has no range parameter (PRM, FMT, ... build their graphs otherwise). loadPlanningScene applies
-// problem.range with it, and for fixed-base robots without one kArmPlannerRange (when the planner
-// has a range).
+// problem.range with it.
 void setPlannerRange(ompl::base::Planner& planner, std::optional<double> range);
-// The range loadPlanningScene gives planners of fixed-base robots when the scene gives none
-// (radians over the joints): shorter steps than OMPL's fifth of the extent (2.6 on a Panda) are
-// cheaper to certify and fail less often in clutter (docs/planner.md, "The planner's range").
-inline constexpr double kArmPlannerRange = 1.0;
 
 struct PlanResult {
   bool solved = false;  // an exact solution was found

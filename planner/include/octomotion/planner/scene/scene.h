@@ -145,7 +145,7 @@ struct ProblemSpec {
   std::optional<std::uint64_t> seed;
   MotionValidatorKind motion_validator = MotionValidatorKind::kCertified;
   // problem.range: how far one step of the planner reaches (OMPL's "range" parameter, in the
-  // state space's distance: radians over the joints for an arm). Empty: planRange's default.
+  // state space's distance: radians over the joints for an arm). Empty: the planner's own.
   std::optional<double> range;
 };
 
