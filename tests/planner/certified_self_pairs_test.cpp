@@ -205,8 +205,9 @@ TEST(PairDistanceBound, NeverExceedsFclsDistanceOnThePanda) {
 
 // Per link, the clearances the certified validator reads (CollisionBackend::motionClearances):
 // FCL's are exact (their least is FCL's distance of the whole robot) and the octree's, with and
-// without a cap, never exceed them (bookshelf, octo7 among boxes, random valid states): the
-// voxels' bounds (refine none), and exact refine's, which are FCL's distances below the cap.
+// without a cap, never exceed them, and a cap changes no value below it (bookshelf, octo7 among
+// boxes, random valid states): the voxels' bounds (refine none), and exact refine's, which are
+// FCL's distances below the cap.
 TEST(MotionClearances, PerLinkOctreeBoundsStayBelowFclsExactDistances) {
   ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
   SceneOverrides voxels, exact_refine;
@@ -252,6 +253,9 @@ TEST(MotionClearances, PerLinkOctreeBoundsStayBelowFclsExactDistances) {
       if (exact[l] < 0.02 - 1e-5) {  // near contact (two voxels): FCL's own distance
         EXPECT_NEAR(refined_capped[l], exact[l], 1e-5) << robot.link(static_cast<int>(l)).name;
       }
+      // A cap only saves work above it: below, the value is the uncapped one.
+      EXPECT_EQ(std::min(capped[l], cap[l]), std::min(bound[l], cap[l]))
+          << robot.link(static_cast<int>(l)).name;
       positive += bound[l] > 0 ? 1 : 0;
     }
   }

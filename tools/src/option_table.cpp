@@ -100,6 +100,12 @@ const OptionTable<SceneOverrides>& sceneOptions() {
          }
          o.seed = static_cast<std::uint64_t>(s);
        }},
+      {"--range", "DISTANCE",
+       "how far one planner step reaches, in the state space's distance\n(radians over the "
+       "joints for an arm; overrides problem.range;\ndefault: the planner's own, docs/planner.md)",
+       [](const std::string& flag, const std::string& v, SceneOverrides& o) {
+         o.range = positive(flag, v);
+       }},
       {"--package-path", "DIR", "extra package:// search path (repeatable)",
        [](const std::string&, const std::string& v, SceneOverrides& o) {
          o.package_paths.push_back(v);

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <limits>
 #include <utility>
+#include <vector>
 
 #include "internal/collision_model_builder.h"
 #include "internal/collision_model_parts.h"
@@ -177,36 +178,69 @@ void OctreeCollisionModel::clearanceLowerBoundGridPerLink(const CheckScratch& sc
   for (int l = 0; l < robot_.linkCount(); ++l) per_link[l] = parts_->links.unreachable_clearance;
   const WorldGrid& world = parts_->environment.tree.grid();
   const double voxel = world.voxelSize();
+  const double side = grid ? grid->sideVoxels() : 0.0;
   // As in clearanceLowerBoundGrid: the grid bounds the distance from a sphere's centre to every
-  // black voxel, outside the universe from the nearest point inside it.
-  auto sphereClearance = [&](const Eigen::Vector3d& centre_W, double radius) {
-    const Eigen::Vector3d g = world.toGrid(centre_W);
-    const double side = grid->sideVoxels();
+  // black voxel, outside the universe from the nearest point inside it. The centre is mapped
+  // from the link frame to grid coordinates in one affine step (X_GL, set per link).
+  Eigen::Matrix3d R_GL;
+  Eigen::Vector3d p_GL;
+  auto sphereClearance = [&](const Eigen::Vector3d& centre_L, double radius) {
+    const Eigen::Vector3d g = R_GL * centre_L + p_GL;
     const Eigen::Vector3d p = g.cwiseMax(0.0).cwiseMin(side * (1 - 1e-12));
     const double c[3] = {p.x(), p.y(), p.z()};
     const double inside = grid->clearance(c);
-    return std::sqrt((g - p).squaredNorm() + inside * inside) * voxel - radius - 1e-6 - slack;
+    const double outside = (g - p).squaredNorm();
+    const double voxels = outside > 0 ? std::sqrt(outside + inside * inside) : inside;
+    return voxels * voxel - radius - 1e-6 - slack;
   };
+  // The groups a link still has to look at, by their own bound (this thread's, reused).
+  thread_local std::vector<std::pair<double, std::size_t>> order;
   for (const detail::LinkTree& lt : parts_->links.links) {
     if (!lt.touches_environment) continue;
     if (!grid) {
       per_link[lt.link] = 0.0;
       continue;
     }
-    if (caps[lt.link] <= 0) continue;
+    const double cap = caps[lt.link];
+    if (cap <= 0) continue;
     const Eigen::Isometry3d& X_WL = scratch.robot.linkPose(lt.link);
+    R_GL = X_WL.linear() / voxel;
+    p_GL = world.toGrid(X_WL.translation());
     // The link's bounding sphere first: one lookup settles a link far from every obstacle.
-    const double whole = sphereClearance(X_WL * lt.voxels.center_L, lt.voxels.radius);
-    if (whole >= caps[lt.link]) {
+    const double whole = sphereClearance(lt.voxels.center_L, lt.voxels.radius);
+    if (whole >= cap) {
       per_link[lt.link] = whole;
       continue;
     }
-    double best = std::numeric_limits<double>::infinity();
-    for (const Eigen::Vector4d& s : lt.spheres_L) {
-      best = std::min(best, sphereClearance(X_WL * Eigen::Vector3d(s.head<3>()), s[3]));
-      if (best <= whole) break;  // no better than the bounding sphere's
+    // Then branch and bound over the groups (SphereGroup): each group's own bound, lowest
+    // first; a group's value is the larger of its bound and its members' least, so a group
+    // whose bound is no lower than the best so far cannot lower it, nor can those after it.
+    // Groups at or above the cap are not opened: the least of their bounds stays a lower
+    // bound for them (the result is then at least the cap, which decides the same).
+    order.clear();
+    double skipped = std::numeric_limits<double>::infinity();
+    for (std::size_t k = 0; k < lt.sphere_groups_L.size(); ++k) {
+      const Eigen::Vector4d& g = lt.sphere_groups_L[k].sphere_L;
+      const double outer = sphereClearance(g.head<3>(), g[3]);
+      if (outer >= cap) {
+        skipped = std::min(skipped, outer);
+      } else {
+        order.emplace_back(outer, k);
+      }
     }
-    per_link[lt.link] = std::max(0.0, std::max(whole, best));
+    std::sort(order.begin(), order.end());
+    double best = std::numeric_limits<double>::infinity();
+    for (const auto& [outer, k] : order) {
+      if (outer >= best || best <= whole) break;  // no better than the bounding sphere's
+      const detail::SphereGroup& group = lt.sphere_groups_L[k];
+      double members = std::numeric_limits<double>::infinity();
+      for (std::size_t i = group.begin; i < group.end && members > outer; ++i) {
+        const Eigen::Vector4d& s = lt.spheres_L[i];
+        members = std::min(members, sphereClearance(s.head<3>(), s[3]));
+      }
+      best = std::min(best, std::max(outer, members));
+    }
+    per_link[lt.link] = std::max(0.0, std::max(whole, std::min(best, skipped)));
   }
 }
 

@@ -189,6 +189,7 @@ SceneInputs loadSceneInputs(const std::string& scene_path, const SceneOverrides&
   if (overrides.motion_validator) spec.problem.motion_validator = *overrides.motion_validator;
   if (overrides.time) spec.problem.time = *overrides.time;
   if (overrides.seed) spec.problem.seed = *overrides.seed;
+  if (overrides.range) spec.problem.range = *overrides.range;
   if (overrides.max_surface_voxels) spec.octree.max_surface_voxels = *overrides.max_surface_voxels;
   if (overrides.link_resolution) spec.octree.link_resolution = *overrides.link_resolution;
   if (overrides.self_link_resolution) {
@@ -460,6 +461,11 @@ void setUpOmpl(PlanningScene& scene, bool free_flying, double robot_diagonal, do
     scene.setup->setStartAndGoalStates(start, goal);
   }
   scene.setup->setPlanner(makePlanner(spec.problem.planner, si));
+  try {
+    setPlannerRange(*scene.setup->getPlanner(), spec.problem.range);
+  } catch (const InvalidArgument& e) {
+    throw FileError(spec.path, std::string("problem.range: ") + e.what());
+  }
 }
 
 }  // namespace

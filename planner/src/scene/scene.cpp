@@ -431,7 +431,7 @@ StateSpec linkPoseGoalFrom(const YamlReader& r, const YAML::Node& node, const st
 void parseProblem(const YamlReader& r, const YAML::Node& node, SceneSpec& scene) {
   r.allowOnly(node, "problem",
               {"group", "fixed", "start", "goal", "bounds", "planner", "time", "seed",
-               "moveit_request", "motion_validator"});
+               "moveit_request", "motion_validator", "range"});
   ProblemSpec& p = scene.problem;
   if (node["moveit_request"]) parseMoveItRequestKey(r, node, scene);
   if (node["group"]) p.group = r.string(node["group"], "problem.group");
@@ -466,6 +466,7 @@ void parseProblem(const YamlReader& r, const YAML::Node& node, SceneSpec& scene)
       r.fail("problem.time", node["time"], planningTimeTooLong(p.time));
     }
   }
+  if (node["range"]) p.range = r.positive(node["range"], "problem.range");
   if (node["seed"]) {
     const double seed = r.number(node["seed"], "problem.seed");
     if (seed < 0 || seed != std::floor(seed) || seed > kMaxSeed) {

@@ -34,6 +34,7 @@ struct SceneOverrides {
   std::optional<MotionValidatorKind> motion_validator;  // problem.motion_validator
   std::optional<double> time;
   std::optional<std::uint64_t> seed;
+  std::optional<double> range;  // > 0; problem.range
   std::vector<std::string> package_paths;
   std::optional<double> max_surface_voxels;    // > 0; the memory guard, see CollisionModelOptions
   std::optional<double> link_resolution;       // > 0; octree.link_resolution
@@ -184,6 +185,13 @@ std::string describeCollision(const StateExplanation& explanation);
 // otherwise.
 ompl::base::PlannerPtr makePlanner(const std::string& name,
                                    const ompl::base::SpaceInformationPtr& si);
+
+// Sets the planner's "range" parameter (how far one extension reaches, in the state space's
+// distance) to `range` when given; else leaves the planner's own default (OMPL: a fifth of the
+// space's extent). InvalidArgument when `range` is not positive and finite, or when the planner
+// has no range parameter (PRM, FMT, ... build their graphs otherwise). loadPlanningScene applies
+// problem.range with it.
+void setPlannerRange(ompl::base::Planner& planner, std::optional<double> range);
 
 struct PlanResult {
   bool solved = false;  // an exact solution was found

@@ -152,6 +152,9 @@ struct ProblemSpec {
   double time = 5.0;                          // seconds
   std::optional<std::uint64_t> seed;
   MotionValidatorKind motion_validator = MotionValidatorKind::kCertified;
+  // problem.range: how far one step of the planner reaches (OMPL's "range" parameter, in the
+  // state space's distance: radians over the joints for an arm). Empty: the planner's own.
+  std::optional<double> range;
 };
 
 struct SceneSpec {
