@@ -12,12 +12,9 @@ set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=$1
 out=$2
-data=${OCTOMOTION_BENCH_SET_DATA:-$root/../shared/data}
-archive=$data/mbm_panda/problems.tar.bz2
-[[ -f $archive ]] || { echo "bench_set_mbm: no $archive (see docs/benchmarking.md)" >&2; exit 1; }
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-tar -xjf "$archive" -C "$tmp"
+name=bench_set_mbm
+# shellcheck source=scripts/mbm_extract.sh
+source "$root/scripts/mbm_extract.sh"
 limit=()
 [[ -n ${OCTOMOTION_BENCH_SET_LIMIT:-} ]] && limit=(--limit "$OCTOMOTION_BENCH_SET_LIMIT")
 results=$build/bench-set-mbm
