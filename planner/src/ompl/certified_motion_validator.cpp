@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -77,7 +78,70 @@ std::uint64_t nextSerial() {
   return next.fetch_add(1, std::memory_order_relaxed);
 }
 
+// The work of the edge at hand on this thread, added to the validator's counts when it ends.
+struct EdgeTally {
+  std::size_t screen_checks = 0, proof_checks = 0, clearance_states = 0, pair_distances = 0;
+  std::size_t depth = 0, remembered_ends = 0;
+  double travel = 0.0;
+  bool screened_out = false;
+};
+thread_local EdgeTally tally;
+
 }  // namespace
+
+struct CertifiedMotionValidator::AtomicCounts {
+  struct Edges {
+    std::atomic<std::size_t> edges{0}, screen_checks{0}, proof_checks{0}, clearance_states{0},
+        pair_distances{0}, depth{0}, nanoseconds{0}, micrometres{0};
+  };
+  Edges accepted, rejected;
+  std::atomic<std::size_t> rejected_by_screen{0}, remembered_ends{0};
+};
+
+void CertifiedMotionValidator::setScreenLevels(int levels) {
+  if (levels < 0 || levels > 16) {
+    throw InvalidArgument("CertifiedMotionValidator: the screen's levels must be within 0..16");
+  }
+  screen_levels_ = levels;
+}
+
+CertifiedMotionValidator::Counts CertifiedMotionValidator::counts() const {
+  auto load = [](const AtomicCounts::Edges& e) {
+    EdgeCounts c;
+    c.edges = e.edges.load(std::memory_order_relaxed);
+    c.screen_checks = e.screen_checks.load(std::memory_order_relaxed);
+    c.proof_checks = e.proof_checks.load(std::memory_order_relaxed);
+    c.clearance_states = e.clearance_states.load(std::memory_order_relaxed);
+    c.pair_distances = e.pair_distances.load(std::memory_order_relaxed);
+    c.depth = e.depth.load(std::memory_order_relaxed);
+    c.seconds = 1e-9 * static_cast<double>(e.nanoseconds.load(std::memory_order_relaxed));
+    c.travel = 1e-6 * static_cast<double>(e.micrometres.load(std::memory_order_relaxed));
+    return c;
+  };
+  Counts c;
+  c.accepted = load(counts_->accepted);
+  c.rejected = load(counts_->rejected);
+  c.rejected_by_screen = counts_->rejected_by_screen.load(std::memory_order_relaxed);
+  c.remembered_ends = counts_->remembered_ends.load(std::memory_order_relaxed);
+  return c;
+}
+
+void CertifiedMotionValidator::resetCounts() const {
+  state_checks_ = 0;
+  self_checks_ = 0;
+  for (AtomicCounts::Edges* e : {&counts_->accepted, &counts_->rejected}) {
+    e->edges = 0;
+    e->screen_checks = 0;
+    e->proof_checks = 0;
+    e->clearance_states = 0;
+    e->pair_distances = 0;
+    e->depth = 0;
+    e->nanoseconds = 0;
+    e->micrometres = 0;
+  }
+  counts_->rejected_by_screen = 0;
+  counts_->remembered_ends = 0;
+}
 
 CertifiedMotionValidator::CertifiedMotionValidator(const ob::SpaceInformationPtr& si,
                                                    std::shared_ptr<const CollisionBackend> backend,
@@ -87,7 +151,8 @@ CertifiedMotionValidator::CertifiedMotionValidator(const ob::SpaceInformationPtr
       backend_(std::move(backend)),
       bound_(std::move(bound)),
       resolution_(resolution),
-      serial_(nextSerial()) {
+      serial_(nextSerial()),
+      counts_(std::make_shared<AtomicCounts>()) {
   if (!backend_) throw InvalidArgument("CertifiedMotionValidator: no collision backend");
   if (!bound_) throw InvalidArgument("CertifiedMotionValidator: no motion bound");
   const RobotModel& robot = backend_->robot();
@@ -121,24 +186,46 @@ double CertifiedMotionValidator::motionBound(const ob::State* s1, const ob::Stat
   return bound_->maxBound(q2.data());
 }
 
-void CertifiedMotionValidator::countMotion(bool free) const {
+void CertifiedMotionValidator::countMotion(bool free,
+                                           std::chrono::steady_clock::time_point start) const {
   // OMPL's counters are plain members, but checkMotion is const and may run on several threads
   // (parallel planners), so the increments are atomic.
   __atomic_fetch_add(free ? &valid_ : &invalid_, 1u, __ATOMIC_RELAXED);
+  const auto ns =
+      std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start)
+          .count();
+  AtomicCounts::Edges& e = free ? counts_->accepted : counts_->rejected;
+  constexpr auto relaxed = std::memory_order_relaxed;
+  e.edges.fetch_add(1, relaxed);
+  e.screen_checks.fetch_add(tally.screen_checks, relaxed);
+  e.proof_checks.fetch_add(tally.proof_checks, relaxed);
+  e.clearance_states.fetch_add(tally.clearance_states, relaxed);
+  e.pair_distances.fetch_add(tally.pair_distances, relaxed);
+  e.depth.fetch_add(tally.depth, relaxed);
+  if (std::isfinite(tally.travel)) {
+    e.micrometres.fetch_add(static_cast<std::size_t>(tally.travel * 1e6), relaxed);
+  }
+  e.nanoseconds.fetch_add(static_cast<std::size_t>(std::max<std::int64_t>(ns, 0)), relaxed);
+  if (tally.screened_out) counts_->rejected_by_screen.fetch_add(1, relaxed);
+  counts_->remembered_ends.fetch_add(tally.remembered_ends, relaxed);
 }
 
 bool CertifiedMotionValidator::checkMotion(const ob::State* s1, const ob::State* s2) const {
+  const auto start = std::chrono::steady_clock::now();
+  tally = {};
   double last_valid = 0.0;
   const bool free = check(s1, s2, false, last_valid);
-  countMotion(free);
+  countMotion(free, start);
   return free;
 }
 
 bool CertifiedMotionValidator::checkMotion(const ob::State* s1, const ob::State* s2,
                                            std::pair<ob::State*, double>& lastValid) const {
+  const auto start = std::chrono::steady_clock::now();
+  tally = {};
   double last_valid = 0.0;
   const bool free = check(s1, s2, true, last_valid);
-  countMotion(free);
+  countMotion(free, start);
   if (free) return true;
   lastValid.second = last_valid;
   if (lastValid.first) si_->getStateSpace()->interpolate(s1, s2, last_valid, lastValid.first);
@@ -206,6 +293,7 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
     max_pair = std::max(max_pair, b);
   }
   max_bound = std::max(max_link, max_pair);
+  tally.travel = max_bound;
   // Exact answers: the travel below which an unproven interval rejects the edge.
   const double min_travel = resolution_ * kExactMinTravel;
   // What an evaluated state's clearance (distance) of the k-th active link (pair) i must reach,
@@ -229,15 +317,16 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
   t.clearance.clear();
   t.distance.clear();
 
-  // Checks the state at t_edge into a new slot: the environment and/or the self pairs, then
-  // the active links' clearances and the active pairs' distances when asked.
-  // A slot's values stay 0 when its state is invalid.
-  auto evaluate = [&](double t_edge, const Scratch::Interval* in, bool environment, bool self,
-                      bool clearances, bool distances, std::size_t& slot) {
-    (environment ? state_checks_ : self_checks_).fetch_add(1, std::memory_order_relaxed);
-    slot = t.clearance.size() / stride;
-    t.clearance.resize(t.clearance.size() + stride, 0.0);
-    t.distance.resize(t.distance.size() + pairs, 0.0);
+  // The screen's levels when it passed (every state at t = k / 2^levels, and s2, was found free
+  // by the checker), -1 when it did not run.
+  int screened_levels = -1;
+  auto screenedFree = [&](double t_edge) {
+    if (screened_levels < 0 || t_edge == 0.0) return false;
+    const double k = std::ldexp(t_edge, screened_levels);
+    return k == std::floor(k);
+  };
+  // The configuration at t_edge into t.q (and t.X_WB); false when it is out of bounds.
+  auto place = [&](double t_edge) {
     if (direct) {
       const ob::State* s = t_edge == 0.0 ? s1 : t_edge == 1.0 ? s2 : nullptr;
       if (s) {
@@ -253,18 +342,36 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
       if (s == t.state) si->getStateSpace()->interpolate(s1, s2, t_edge, t.state);
       if (!si->satisfiesBounds(s) || !stateToConfiguration(robot, s, t.q, t.X_WB)) return false;
     }
+    return true;
+  };
+  // Checks the state at t_edge into a new slot: the environment and/or the self pairs, then
+  // the active links' clearances and the active pairs' distances when asked.
+  // A slot's values stay 0 when its state is invalid.
+  auto evaluate = [&](double t_edge, const Scratch::Interval* in, bool environment, bool self,
+                      bool clearances, bool distances, std::size_t& slot) {
+    slot = t.clearance.size() / stride;
+    t.clearance.resize(t.clearance.size() + stride, 0.0);
+    t.distance.resize(t.distance.size() + pairs, 0.0);
+    if (!place(t_edge)) return false;
     BackendScratch& scratch = *t.backend;
-    const bool collides = environment && self ? backend.inCollision(t.q.data(), n, t.X_WB, scratch)
-                          : environment
-                              ? backend.environmentInCollision(t.q.data(), n, t.X_WB, scratch)
+    if (screenedFree(t_edge)) {
+      backend.setPose(t.q.data(), n, t.X_WB, scratch);  // its clearances only
+    } else {
+      (environment ? state_checks_ : self_checks_).fetch_add(1, std::memory_order_relaxed);
+      ++tally.proof_checks;
+      const bool collides =
+          environment && self ? backend.inCollision(t.q.data(), n, t.X_WB, scratch)
+          : environment       ? backend.environmentInCollision(t.q.data(), n, t.X_WB, scratch)
                               : backend.selfInCollision(t.q.data(), n, t.X_WB, scratch);
-    if (collides) return false;
+      if (collides) return false;
+    }
     if (environment && clearances && has_clearance) {
       for (std::size_t k = 0; k < t.active_links.size(); ++k) {
         const std::size_t l = t.active_links[k];
         t.caps[l] = capOf(in, k, l, t.link_bound[l], t.clearance, stride, in ? in->links_done : 0);
       }
       backend.motionClearances(scratch, t.caps.data(), t.clearance.data() + slot * stride);
+      ++tally.clearance_states;
     }
     if (self && distances && !t.active_pairs.empty()) {
       const RobotData* posed = backend.posedRobot(scratch);
@@ -283,6 +390,7 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
         // The spheres' bound is too small and near contact: the links' own distance (farther,
         // FCL's distance costs more than the bisection the looser bound asks for).
         if (exact && d[p] < cap && d[p] < kExactNear * resolution_) {
+          ++tally.pair_distances;
           const auto& [link_a, link_b] = bound_->pairs()[p];
           d[p] = std::max(d[p], backend.linkPairDistance(scratch, link_a, link_b, cap));
         }
@@ -338,7 +446,9 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
     const bool need_distance = !t.active_pairs.empty();
     // An end: remembered, or checked (and remembered when valid).
     constexpr double kUnknown = std::numeric_limits<double>::quiet_NaN();
-    auto evaluateEnd = [&](double t_edge, std::size_t& slot) {
+    // The end's place in the remembered ends (its key in t.key): it is remembered when the
+    // place holds its key.
+    auto rememberedPlace = [&](double t_edge) -> Scratch::Remembered& {
       const std::vector<double>& q = t_edge == 0.0 ? t.q1 : t.q2;
       const Eigen::Isometry3d& X = t_edge == 0.0 ? t.X_WB1 : t.X_WB2;
       t.key.assign(q.begin(), q.end());
@@ -351,12 +461,16 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
         std::memcpy(&bits, &v, sizeof bits);
         hash = (hash ^ bits) * 1099511628211ull;
       }
-      Scratch::Remembered& r = t.remembered[(hash ^ (hash >> 29)) % Scratch::kRemembered];
+      return t.remembered[(hash ^ (hash >> 29)) % Scratch::kRemembered];
+    };
+    auto evaluateEnd = [&](double t_edge, std::size_t& slot) {
+      Scratch::Remembered& r = rememberedPlace(t_edge);
       if (r.validator == serial_ && r.key == t.key) {
         bool known = true;
         for (std::size_t l : t.active_links) known = known && !std::isnan(r.clearance[l]);
         for (std::size_t p : t.active_pairs) known = known && !std::isnan(r.distance[p]);
         if (known) {
+          ++tally.remembered_ends;
           slot = t.clearance.size() / stride;
           t.clearance.resize(t.clearance.size() + stride, 0.0);
           t.distance.resize(t.distance.size() + pairs, 0.0);
@@ -380,6 +494,33 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
       for (std::size_t p : t.active_pairs) r.distance[p] = t.distance[slot * pairs + p];
       return true;
     };
+    // The collision screen (the header's kScreenLevels): an edge through a colliding state is
+    // rejected before any clearance is measured. Not when the last valid state is wanted: that
+    // must end a proven part of the edge.
+    auto screenCollides = [&](double t_edge) {
+      state_checks_.fetch_add(1, std::memory_order_relaxed);
+      ++tally.screen_checks;
+      if (!place(t_edge)) return true;
+      return backend.inCollision(t.q.data(), n, t.X_WB, *t.backend);
+    };
+    if (!want_last && screen_levels_ > 0) {
+      const Scratch::Remembered& r2 = rememberedPlace(1.0);
+      bool collides = !(r2.validator == serial_ && r2.key == t.key) && screenCollides(1.0);
+      int levels = 0;
+      while (levels < screen_levels_ &&
+             std::ldexp(max_bound, -levels) > kScreenTravel * resolution_) {
+        ++levels;
+      }
+      for (int level = 1; level <= levels && !collides; ++level) {
+        const double step = std::ldexp(1.0, -level);
+        for (double m = step; m < 1.0 && !collides; m += 2 * step) collides = screenCollides(m);
+      }
+      if (collides) {
+        tally.screened_out = true;
+        return false;
+      }
+      screened_levels = levels;
+    }
     // s2 first: an edge to an invalid state (most rejected edges) ends before s1 is looked at.
     std::size_t slot1 = 0, slot2 = 0;
     const bool s2_valid = evaluateEnd(1.0, slot2);
@@ -421,6 +562,7 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
       const bool environment = !in.b_valid || open_links > 0.0;
       const bool self = !in.b_valid || open_pairs > 0.0;
       const double m = 0.5 * (in.a + in.b);
+      tally.depth = std::max(tally.depth, static_cast<std::size_t>(1 - std::ilogb(s)));
       std::size_t sm = 0;
       const bool m_valid =
           evaluate(m, &in, environment || !self, self, 0.5 * max_link * s > decided_by_ends,

@@ -53,6 +53,12 @@ class CollisionBackend {
                                       BackendScratch& scratch) const = 0;
   virtual bool selfInCollision(const double* q, std::size_t q_size, const Eigen::Isometry3d& X_WB,
                                BackendScratch& scratch) const = 0;
+  // Poses the robot only, for the queries below on a state already known free (the certified
+  // motion validator's screened states). Default: inCollision, its answer dropped.
+  virtual void setPose(const double* q, std::size_t q_size, const Eigen::Isometry3d& X_WB,
+                       BackendScratch& scratch) const {
+    inCollision(q, q_size, X_WB, scratch);
+  }
 
   // Why the state (q, X_WB as for inCollision) is invalid: non-finite values, joints outside
   // their limits (options.check_limits), and the contacts — each link with the environment

@@ -39,6 +39,11 @@ class OctreeBackend final : public CollisionBackend {
     CheckScratch& check = pose(q, q_size, X_WB, scratch);
     return model_->selfInCollision(path_, check);
   }
+  // Forward kinematics alone: the clearances and pair distances read the link poses.
+  void setPose(const double* q, std::size_t q_size, const Eigen::Isometry3d& X_WB,
+               BackendScratch& scratch) const override {
+    pose(q, q_size, X_WB, scratch);
+  }
   // OctreeCollisionModel::clearanceLowerBound.
   double clearance(BackendScratch& scratch) const override {
     return model_->clearanceLowerBound(scratchOf(scratch).check);

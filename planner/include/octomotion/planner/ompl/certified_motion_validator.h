@@ -21,12 +21,15 @@
 // - exact answers carry none: a link or pair is proven only by the clearances, and an interval
 //   whose unproven links' or pairs' bound falls below kExactMinTravel * resolution rejects the
 //   edge, so every accepted edge is proven free for the exact geometry.
+// Before the proof, a collision screen (kScreenLevels) checks states of the edge for collision
+// alone, coarse to fine: an edge through a colliding state is rejected without a clearance.
 // Each thread remembers the last valid ends it checked (their clearances and pair distances), so
 // an edge that starts where an earlier one ended (RRTConnect's connect steps, a tree node
 // reused) does not check it again.
 #pragma once
 
 #include <atomic>
+#include <chrono>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -74,20 +77,49 @@ class CertifiedMotionValidator : public ompl::base::MotionValidator {
   // The path-length bound of the whole edge: the largest over the robot's points.
   double motionBound(const ompl::base::State* s1, const ompl::base::State* s2) const;
 
+  // Collision screen: before the proof, states of the edge are checked for collision alone (no
+  // clearance, no distance) in breadth-first order (the end s2, then 1/2, 1/4, 3/4, 1/8, ...),
+  // down to the level where the edge's bound between them is at most kScreenTravel resolutions
+  // and at most kScreenLevels levels (2^kScreenLevels - 1 midpoints): a colliding edge is
+  // rejected there, cheaply; the proof is spent only on edges that pass it.
+  static constexpr int kScreenLevels = 4;
+  static constexpr double kScreenTravel = 4.0;
+
   // Counters since construction (or resetCounts): state checks that test the environment (with
   // clearances) and self-pair-only checks.
   std::size_t stateChecks() const { return state_checks_.load(std::memory_order_relaxed); }
   std::size_t selfChecks() const { return self_checks_.load(std::memory_order_relaxed); }
-  void resetCounts() const {
-    state_checks_ = 0;
-    self_checks_ = 0;
-  }
+  // Where the work goes, edge by edge (for benches and profiling; the clock is read twice per
+  // edge): accepted and rejected edges, each with its state checks (screen, environment and
+  // self-only checks), states whose clearances were measured, exact pair distances asked, the
+  // deepest bisection level reached, and the time spent.
+  struct EdgeCounts {
+    std::size_t edges = 0;
+    std::size_t screen_checks = 0;     // collision-only checks of the screen
+    std::size_t proof_checks = 0;      // checks of the proof (environment and self-only)
+    std::size_t clearance_states = 0;  // states whose link clearances were measured
+    std::size_t pair_distances = 0;    // CollisionBackend::linkPairDistance calls
+    std::size_t depth = 0;             // sum over the edges of their deepest bisection level
+    double travel = 0.0;               // sum over the edges of their bound (metres)
+    double seconds = 0.0;
+  };
+  struct Counts {
+    EdgeCounts accepted, rejected;
+    std::size_t rejected_by_screen = 0;  // of `rejected`: a screened state collides
+    std::size_t remembered_ends = 0;     // ends whose clearances were remembered
+  };
+  Counts counts() const;
+  // The screen's depth in levels (0: no screen, the proof alone; kScreenLevels by default). Set
+  // before planning (not thread-safe against checks in flight).
+  void setScreenLevels(int levels);
+  int screenLevels() const { return screen_levels_; }
+  void resetCounts() const;
 
   double resolution() const { return resolution_; }
   const CollisionBackend& backend() const { return *backend_; }
 
  private:
-  void countMotion(bool free) const;
+  void countMotion(bool free, std::chrono::steady_clock::time_point start) const;
   struct Scratch;
   bool check(const ompl::base::State* s1, const ompl::base::State* s2, bool want_last,
              double& last_valid) const;
@@ -95,9 +127,13 @@ class CertifiedMotionValidator : public ompl::base::MotionValidator {
   std::shared_ptr<const CollisionBackend> backend_;
   std::shared_ptr<const LinkMotionBound> bound_;
   double resolution_;
-  std::uint64_t serial_;  // process-unique: a thread's remembered states belong to one validator
+  std::uint64_t serial_;
+  int screen_levels_ =
+      kScreenLevels;  // process-unique: a thread's remembered states belong to one validator
   mutable std::atomic<std::size_t> state_checks_{0};
   mutable std::atomic<std::size_t> self_checks_{0};
+  struct AtomicCounts;
+  std::shared_ptr<AtomicCounts> counts_;  // defined in the source; shared_ptr: no destructor here
 };
 
 // The path-length bound of the robot's links and of what they carry (attached objects, by their

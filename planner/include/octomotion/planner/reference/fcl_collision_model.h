@@ -70,6 +70,11 @@ class FclCollisionModel final : public CollisionBackend {
   bool selfInCollision(const double* q, std::size_t q_size, const Eigen::Isometry3d& X_WB,
                        BackendScratch& scratch) const override;
   double clearance(BackendScratch& scratch) const override;
+  // setConfiguration alone.
+  void setPose(const double* q, std::size_t q_size, const Eigen::Isometry3d& X_WB,
+               BackendScratch& scratch) const override {
+    setConfiguration(q, q_size, X_WB, scratchOf(scratch));
+  }
   // environmentDistance link by link, each capped at caps[l].
   void motionClearances(BackendScratch& scratch, const double* caps,
                         double* per_link) const override;
