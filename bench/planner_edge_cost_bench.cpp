@@ -1,0 +1,137 @@
+// Where a certified motion check's time goes while planning: the Panda MotionBenchMaker problems
+// (../shared/data/mbm_panda, the first `kPerSet` problems of each of the 7 sets, each read
+// straight from its MoveIt scene and request with the Panda of ../shared/data/panda) planned
+// once each by the scene's defaults (RRTConnect, 1 s, seed 1), with the octree (fused) checker
+// at the defaults (exact refine) and with exact FCL, with the certified validator's collision
+// screen (CertifiedMotionValidator::kScreenLevels) and without it (`noscreen`). The counters,
+// per plan, split the motion checks into accepted and rejected edges
+// (CertifiedMotionValidator::Counts): how many, milliseconds per edge, screen and proof state
+// checks per edge, states whose clearances were measured, exact pair distances, the deepest
+// bisection level and the edge's bound (metres of travel); `rejected_by_screen` is the share of
+// rejected edges the screen rejected, `solved` the share of problems solved, and `plan_ms` the
+// median planning time.
+//
+//   build/bench/planner_edge_cost_bench --benchmark_filter=octree   (one command line)
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <cstddef>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <ompl/util/Console.h>
+
+#include "mbm_problems.h"
+#include "octomotion/planner/ompl/certified_motion_validator.h"
+#include "octomotion/planner/ompl/planning_scene.h"
+
+namespace {
+
+using namespace octomotion;
+namespace ob = ompl::base;
+
+constexpr std::size_t kPerSet = 3;
+
+std::vector<test::MbmProblem> chosen(const test::MbmProblems& set) {
+  std::vector<test::MbmProblem> out;
+  std::map<std::string, std::size_t> per_set;
+  for (const test::MbmProblem& p : set.problems()) {
+    if (per_set[p.set]++ < kPerSet) out.push_back(p);
+  }
+  return out;
+}
+
+void run(benchmark::State& state, CheckerKind checker, bool screen) {
+  ompl::msg::setLogLevel(ompl::msg::LOG_NONE);
+  static const test::MbmProblems set;
+  if (set.problems().empty() ||
+      !std::filesystem::exists(test::MbmProblems::panda() + "/panda.urdf")) {
+    state.SkipWithError("no MotionBenchMaker problems or Panda under ../shared/data");
+    return;
+  }
+  const std::string panda = test::MbmProblems::panda();
+  CertifiedMotionValidator::Counts total;
+  std::size_t plans = 0, solved = 0;
+  std::vector<double> times;
+  for (auto _ : state) {
+    for (const test::MbmProblem& p : chosen(set)) {
+      const std::string path = set.folder() + "/" + p.set + "_" +
+                               std::filesystem::path(p.request).stem().string() + "_edge_cost.yaml";
+      std::ofstream(path) << "robot: {urdf: " << panda << "/panda.urdf, srdf: " << panda
+                          << "/panda.srdf}\nenvironment:\n  - moveit_scene: " << p.scene
+                          << "\nproblem: {moveit_request: " << p.request << ", seed: 1, time: 1}\n";
+      SceneOverrides overrides;
+      overrides.checker = checker;
+      PlanningScene scene = loadPlanningScene(path, overrides, [](const std::string&) {});
+      const ob::SpaceInformationPtr& si = scene.setup->getSpaceInformation();
+      scene.setup->setup();
+      auto validator =
+          std::dynamic_pointer_cast<CertifiedMotionValidator>(si->getMotionValidator());
+      if (!validator) {
+        state.SkipWithError("the scene's motion validator is not the certified one");
+        return;
+      }
+      validator->setScreenLevels(screen ? CertifiedMotionValidator::kScreenLevels : 0);
+      validator->resetCounts();
+      const ob::PlannerStatus status = scene.setup->solve(scene.spec.problem.time);
+      ++plans;
+      solved += status == ob::PlannerStatus::EXACT_SOLUTION ? 1 : 0;
+      times.push_back(scene.setup->getLastPlanComputationTime());
+      const CertifiedMotionValidator::Counts c = validator->counts();
+      for (auto [sum, add] :
+           {std::pair{&total.accepted, &c.accepted}, std::pair{&total.rejected, &c.rejected}}) {
+        sum->edges += add->edges;
+        sum->screen_checks += add->screen_checks;
+        sum->proof_checks += add->proof_checks;
+        sum->clearance_states += add->clearance_states;
+        sum->pair_distances += add->pair_distances;
+        sum->depth += add->depth;
+        sum->travel += add->travel;
+        sum->seconds += add->seconds;
+      }
+      total.rejected_by_screen += c.rejected_by_screen;
+      total.remembered_ends += c.remembered_ends;
+    }
+  }
+  const double n = plans ? static_cast<double>(plans) : 1.0;
+  std::sort(times.begin(), times.end());
+  state.counters["solved"] = static_cast<double>(solved) / n;
+  state.counters["plan_ms"] = times.empty() ? 0.0 : 1e3 * times[times.size() / 2];
+  for (auto [name, e] : {std::pair{std::string("acc_"), &total.accepted},
+                         std::pair{std::string("rej_"), &total.rejected}}) {
+    const double edges = e->edges ? static_cast<double>(e->edges) : 1.0;
+    state.counters[name + "per_plan"] = static_cast<double>(e->edges) / n;
+    state.counters[name + "ms"] = 1e3 * e->seconds / edges;
+    state.counters[name + "screen"] = static_cast<double>(e->screen_checks) / edges;
+    state.counters[name + "proof"] = static_cast<double>(e->proof_checks) / edges;
+    state.counters[name + "clear"] = static_cast<double>(e->clearance_states) / edges;
+    state.counters[name + "pairs"] = static_cast<double>(e->pair_distances) / edges;
+    state.counters[name + "depth"] = static_cast<double>(e->depth) / edges;
+    state.counters[name + "travel_m"] = e->travel / edges;
+  }
+  state.counters["rejected_by_screen"] =
+      static_cast<double>(total.rejected_by_screen) /
+      (total.rejected.edges ? static_cast<double>(total.rejected.edges) : 1.0);
+  state.counters["remembered_per_edge"] =
+      static_cast<double>(total.remembered_ends) /
+      std::max(1.0, static_cast<double>(total.accepted.edges + total.rejected.edges));
+}
+
+BENCHMARK_CAPTURE(run, octree, CheckerKind::kOctreeFused, true)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
+BENCHMARK_CAPTURE(run, octree_noscreen, CheckerKind::kOctreeFused, false)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
+BENCHMARK_CAPTURE(run, fcl, CheckerKind::kFcl, true)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK_CAPTURE(run, fcl_noscreen, CheckerKind::kFcl, false)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
+
+}  // namespace
+
+BENCHMARK_MAIN();
