@@ -3,7 +3,8 @@
 // straight from its MoveIt scene and request with the Panda of ../shared/data/panda) planned
 // once each by the scene's defaults (RRTConnect, 1 s, seed 1), with the octree (fused) checker
 // at the defaults (exact refine) and with exact FCL, with the certified validator's collision
-// screen (CertifiedMotionValidator::kScreenLevels) and without it (`noscreen`). The counters,
+// screen (CertifiedMotionValidator::kScreenLevels), without it (`noscreen`) and with 2 and 6
+// levels. The counters,
 // per plan, split the motion checks into accepted and rejected edges
 // (CertifiedMotionValidator::Counts): how many, milliseconds per edge, screen and proof state
 // checks per edge, states whose clearances were measured, exact pair distances, the deepest
@@ -45,7 +46,7 @@ std::vector<test::MbmProblem> chosen(const test::MbmProblems& set) {
   return out;
 }
 
-void run(benchmark::State& state, CheckerKind checker, bool screen) {
+void run(benchmark::State& state, CheckerKind checker, int screen_levels) {
   ompl::msg::setLogLevel(ompl::msg::LOG_NONE);
   static const test::MbmProblems set;
   if (set.problems().empty() ||
@@ -75,7 +76,7 @@ void run(benchmark::State& state, CheckerKind checker, bool screen) {
         state.SkipWithError("the scene's motion validator is not the certified one");
         return;
       }
-      validator->setScreenLevels(screen ? CertifiedMotionValidator::kScreenLevels : 0);
+      validator->setScreenLevels(screen_levels);
       validator->resetCounts();
       const ob::PlannerStatus status = scene.setup->solve(scene.spec.problem.time);
       ++plans;
@@ -121,14 +122,24 @@ void run(benchmark::State& state, CheckerKind checker, bool screen) {
       std::max(1.0, static_cast<double>(total.accepted.edges + total.rejected.edges));
 }
 
-BENCHMARK_CAPTURE(run, octree, CheckerKind::kOctreeFused, true)
+constexpr int kDefault = CertifiedMotionValidator::kScreenLevels;
+BENCHMARK_CAPTURE(run, octree, CheckerKind::kOctreeFused, kDefault)
     ->Unit(benchmark::kMillisecond)
     ->Iterations(1);
-BENCHMARK_CAPTURE(run, octree_noscreen, CheckerKind::kOctreeFused, false)
+BENCHMARK_CAPTURE(run, octree_noscreen, CheckerKind::kOctreeFused, 0)
     ->Unit(benchmark::kMillisecond)
     ->Iterations(1);
-BENCHMARK_CAPTURE(run, fcl, CheckerKind::kFcl, true)->Unit(benchmark::kMillisecond)->Iterations(1);
-BENCHMARK_CAPTURE(run, fcl_noscreen, CheckerKind::kFcl, false)
+// The screen's depth (kScreenLevels): shallower and deeper.
+BENCHMARK_CAPTURE(run, octree_screen2, CheckerKind::kOctreeFused, 2)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
+BENCHMARK_CAPTURE(run, octree_screen6, CheckerKind::kOctreeFused, 6)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
+BENCHMARK_CAPTURE(run, fcl, CheckerKind::kFcl, kDefault)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
+BENCHMARK_CAPTURE(run, fcl_noscreen, CheckerKind::kFcl, 0)
     ->Unit(benchmark::kMillisecond)
     ->Iterations(1);
 
