@@ -40,6 +40,7 @@ int run(int argc, char** argv) {
   const int sets = argc > 2 ? std::atoi(argv[2]) : 4;
   const double resolution = argc > 3 ? std::atof(argv[3]) : 0.01;
   const std::string settings = argc > 4 ? argv[4] : "0123";
+  const double exact_link_ratio = argc > 5 ? std::atof(argv[5]) : 0;
   if (count < 1 || sets < 1 || !(resolution > 0)) {
     throw InvalidArgument("STATES and SETS must be >= 1, RESOLUTION > 0");
   }
@@ -93,6 +94,9 @@ int run(int argc, char** argv) {
       options.resolution = resolution;
       options.X_WB = scene.model->baseMount();
       options.refine = refine;
+      if (refine == RefineMode::kExact && exact_link_ratio > 0) {
+        options.link_resolution = resolution * exact_link_ratio;
+      }
       if (setting == 2) options.self_link_resolution = resolution * kDefaultLinkResolutionRatio;
       options.self_pair_tables = setting == 3;
       const auto b0 = Clock::now();
@@ -115,7 +119,8 @@ int run(int argc, char** argv) {
         check_seconds = seconds(t0, Clock::now());
         const RefineCounts end = model.refineCounts(scratch);
         counts = {end.certain_contacts - start.certain_contacts, end.fcl_links - start.fcl_links,
-                  end.fcl_pairs - start.fcl_pairs, end.hull_apart_pairs - start.hull_apart_pairs};
+                  end.fcl_pairs - start.fcl_pairs, end.hull_apart_pairs - start.hull_apart_pairs,
+                  end.certain_self_contacts - start.certain_self_contacts};
       }
       const double mean = 1e6 * check_seconds / count;
       std::printf("  %-22s mean %8.3f us, FP %5.2f %%, missed %d, FCL / this %5.2f, build %.2f s\n",
@@ -128,11 +133,12 @@ int run(int argc, char** argv) {
       if (refine == RefineMode::kExact) {
         std::printf(
             "  %-22s per check: certain contacts %.3f, FCL links %.3f, FCL pairs %.3f, "
-            "hull-apart pairs %.3f\n",
+            "hull-apart pairs %.3f, certain self contacts %.3f\n",
             "", static_cast<double>(counts.certain_contacts) / count,
             static_cast<double>(counts.fcl_links) / count,
             static_cast<double>(counts.fcl_pairs) / count,
-            static_cast<double>(counts.hull_apart_pairs) / count);
+            static_cast<double>(counts.hull_apart_pairs) / count,
+            static_cast<double>(counts.certain_self_contacts) / count);
       }
     }
   }

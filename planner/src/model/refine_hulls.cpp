@@ -11,6 +11,7 @@
 #include <fcl/math/bv/OBBRSS.h>
 
 #include "internal/refine.h"
+#include "octomotion/motion/box_overlap.h"
 
 namespace octomotion::detail {
 
@@ -95,6 +96,14 @@ bool refineHullsApart(const RefineData& data, const RobotData& robot, int link_a
   const ConvexPoints& b = data.link_hulls_L[static_cast<std::size_t>(link_b)];
   if (a.empty() || b.empty()) return false;
   const Eigen::Isometry3d X_AB = robot.linkPose(link_a).inverse() * robot.linkPose(link_b);
+  // The boxes hold the hulls' points (grown by their radii, zero for these hulls): boxes
+  // more than kHullGap apart leave the hulls so.
+  const auto& [ca_L, ha_L] = data.link_hull_boxes_L[static_cast<std::size_t>(link_a)];
+  const auto& [cb_L, hb_L] = data.link_hull_boxes_L[static_cast<std::size_t>(link_b)];
+  if (!boxesOverlap(ca_L, ha_L, X_AB.linear(), X_AB * cb_L, hb_L,
+                    kHullGap + a.radius() + b.radius())) {
+    return true;
+  }
   return convexApart(a, b, X_AB, kHullGap, &direction);
 }
 

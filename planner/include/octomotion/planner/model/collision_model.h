@@ -309,6 +309,9 @@ struct RefineCounts {
   // Link pairs cleared by their hulls (the convex hulls of their meshes' vertices apart), before
   // any voxel or FCL test.
   std::uint64_t hull_apart_pairs = 0;
+  // Link pairs in contact for certain without voxels or FCL (two closed convex meshes whose
+  // surfaces cross); the check stops at the first.
+  std::uint64_t certain_self_contacts = 0;
 };
 
 // RefineMode::kExact: the posed FCL objects of one thread, opaque here, made by the first
