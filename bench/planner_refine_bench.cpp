@@ -6,10 +6,13 @@
 // and FCL's mean over its own. A plain program like planner_self_pair_tables_bench; needs
 // ../shared/data (MotionBenchMaker problems and the Panda).
 // For the refined rows also, per check: the contacts certain without FCL, the links (against
-// the environment) and link pairs FCL decided, and the link pairs cleared by their hulls.
+// the environment) and link pairs FCL decided, the link pairs cleared by their hulls, and the
+// self contacts certain without FCL (closed meshes whose surfaces cross).
 // SETTINGS picks rows (digits 0-3, e.g. 01 for a quick profile without the self-pair tables'
-// build). Usage: build/bench/planner_refine_bench [STATES] [SETS] [RESOLUTION] [SETTINGS]
-//        (default 5000 4 0.01 0123)
+// build); LINK_RATIO, when given, sets the refined rows' link trees to RESOLUTION x LINK_RATIO
+// (and their self trees with them), to choose that resolution by measurement.
+// Usage: build/bench/planner_refine_bench [STATES] [SETS] [RESOLUTION] [SETTINGS] [LINK_RATIO]
+//        (default 5000 4 0.01 0123, the library's link trees)
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
