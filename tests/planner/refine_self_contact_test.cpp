@@ -1,10 +1,13 @@
-// Exact refine mode's certain self contacts (planner/src/model/refine_self_contact.cpp): a
-// checked pair of closed-mesh links with a vertex of one deep inside the other and another deep
-// outside is called in contact without voxels or FCL. Property: on the real Panda (no
-// environment, so every contact is a self contact) at uniform random states (fixed seed), every
-// check that called a self contact certain is one FCL finds in self collision, and the refined
-// answer is FCL's on every state. Not vacuous: the shortcut fires, and FCL is left few pairs.
-// Skipped without ../shared/data/panda.
+// Exact refine mode's shortcuts past FCL. Certain self contacts
+// (planner/src/model/refine_self_contact.cpp): a checked pair of closed-mesh links with a vertex
+// of one deep inside the other and another deep outside is called in contact without voxels or
+// FCL. Property: on the real Panda (no environment, so every contact is a self contact) at
+// uniform random states (fixed seed), every check that called a self contact certain is one FCL
+// finds in self collision, and the refined answer is FCL's on every state. Link-object pairs
+// cleared by hulls (objectHull, refine_hulls.cpp): among boxes, balls and cylinders around the
+// Panda, the refined environment answer is FCL's on every state while the hulls clear pairs
+// FCL would otherwise test. Not vacuous: each shortcut fires. Skipped without
+// ../shared/data/panda.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -59,6 +62,46 @@ TEST(RefineSelfContact, EveryCertainSelfContactIsAnFclContact) {
   EXPECT_GT(certain_states, fcl_contacts / 2);
   EXPECT_GT(fcl_contacts, 50u);
   EXPECT_LT(model.refineCounts(scratch).fcl_pairs, fcl_contacts);
+}
+
+TEST(RefineSelfContact, LinksClearedByObjectHullsAreFreeForFcl) {
+  if (!std::filesystem::exists(kPanda + "/panda.urdf")) GTEST_SKIP() << "no Panda";
+  RobotModel robot = RobotModel::fromUrdfFile(kPanda + "/panda.urdf");
+  robot.loadSrdfFile(kPanda + "/panda.srdf");
+  std::vector<EnvironmentObject> objects(3);
+  objects[0].primitive = Box{Eigen::Vector3d(0.15, 0.3, 0.02)};
+  objects[0].X_WO =
+      Eigen::Translation3d(0.45, 0, 0.4) * Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitY());
+  objects[1].primitive = Cylinder{0.05, 0.5};
+  objects[1].X_WO =
+      Eigen::Translation3d(-0.1, 0.45, 0.5) * Eigen::AngleAxisd(0.7, Eigen::Vector3d::UnitX());
+  objects[2].primitive = Sphere{0.12};
+  objects[2].X_WO.translation() = Eigen::Vector3d(0.1, -0.45, 0.7);
+  for (std::size_t i = 0; i < objects.size(); ++i) objects[i].name = "o" + std::to_string(i);
+  const EnvironmentGeometry environment = EnvironmentGeometry::load(objects);
+  CollisionModelOptions options;
+  options.refine = RefineMode::kExact;
+  const OctreeCollisionModel model(robot, environment, options);
+  const FclCollisionModel fcl(robot, environment);
+  auto exact = fcl.makeScratch();
+  CheckScratch scratch = model.makeScratch();
+  std::mt19937_64 rng(0x0b1e);
+  std::size_t contacts = 0, disagreements = 0;
+  for (int state = 0; state < 3000; ++state) {
+    std::vector<double> q;
+    for (const Variable& v : robot.variables()) {
+      q.push_back(std::uniform_real_distribution<double>(v.lower, v.upper)(rng));
+    }
+    fcl.setConfiguration(q.data(), q.size(), Eigen::Isometry3d::Identity(), *exact);
+    const bool truth = fcl.environmentInCollision(*exact);
+    contacts += truth;
+    model.robot().forwardKinematics(q.data(), q.size(), scratch.robot,
+                                    Eigen::Isometry3d::Identity());
+    disagreements += model.environmentInCollision(CheckerPath::kFused, scratch) != truth;
+  }
+  EXPECT_EQ(disagreements, 0u);
+  EXPECT_GT(contacts, 50u);
+  EXPECT_GT(model.refineCounts(scratch).hull_apart_objects, 0u);
 }
 
 }  // namespace

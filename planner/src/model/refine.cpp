@@ -137,6 +137,7 @@ RefineData::RefineData(const RobotModel& model, const EnvironmentGeometry& envir
     for (std::size_t k = 0; k < object.shapes.size(); ++k) {
       extend(object.box_W, object.shapes[k].getAABB(), k == 0);
     }
+    object.hull_W = objectHull(item.spec, item.mesh);
     objects.push_back(std::move(object));
   }
   fcl_internal::RobotScratch prototypes;
@@ -199,10 +200,19 @@ bool certainLinkContact(const RefineData& data, RefineScratch& r, const RobotDat
 bool refineLinkHits(const RefineData& data, RefineScratch& r, const RobotData& robot, int link) {
   refinePoseLink(data, r, robot, link);
   fcl_internal::RobotScratch& s = r.fcl;
+  // Per object: unknown (0), apart from the link's hull (1), not apart (2); decided on the
+  // first element that reaches FCL with it.
+  r.object_apart.assign(data.objects.size(), 0);
   for (std::size_t e : data.link_elements[static_cast<std::size_t>(link)]) {
     const fcl::CollisionObjectd& element = s.objects[e];
-    for (const RefineObject& object : data.objects) {
+    for (std::size_t o = 0; o < data.objects.size(); ++o) {
+      const RefineObject& object = data.objects[o];
       if (object.shapes.empty() || !object.box_W.overlap(element.getAABB())) continue;
+      if (r.object_apart[o] == 0) {
+        r.object_apart[o] = linkApartFromObject(data, robot, link, object) ? 1 : 2;
+        r.counts.hull_apart_objects += r.object_apart[o] == 1;
+      }
+      if (r.object_apart[o] == 1) continue;
       for (const fcl::CollisionObjectd& shape : object.shapes) {
         if (fcl_internal::collidePair(element, shape, s.request, s.result)) return true;
       }

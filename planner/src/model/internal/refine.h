@@ -29,7 +29,15 @@ struct RefineObject {
   // A box, ball or cylinder obstacle: the shape in its frame O (FCL treats it as a solid).
   std::optional<Primitive> primitive;
   Eigen::Isometry3d X_OW = Eigen::Isometry3d::Identity();
+  // In W, a convex set holding the object's solid (objectHull); empty for voxel objects. A
+  // link whose hull is apart from it is free of it for FCL (refineLinkHits).
+  ConvexPoints hull_W;
 };
+
+// A convex set holding `spec`'s solid in W: a box's corners, a ball's centre grown by its radius,
+// a cylinder's end centres grown by its radius (a capsule holds it), a mesh's vertices (its
+// triangles lie in their hull); empty for other objects.
+ConvexPoints objectHull(const EnvironmentObject& spec, const TriangleMesh& mesh);
 
 // A point of a robot element this deep inside a primitive obstacle makes FCL report a contact:
 // far above FCL's GJK tolerance (micrometres), far below any obstacle's size.
@@ -90,6 +98,7 @@ struct RefineScratch {
   // Per self pair (SelfCollision::pairs): the last direction that separated its hulls, tried
   // first (a planner's nearby states are often separated the same way).
   std::vector<Eigen::Vector3d> pair_directions;
+  std::vector<char> object_apart;  // refineLinkHits' per-object hull verdicts
   RefineCounts counts;
 };
 
@@ -116,6 +125,10 @@ bool refineUncertainPairsHit(const RefineData& data, RefineScratch& r, const Rob
 std::vector<ConvexPoints> linkHulls(const fcl_internal::RobotGeometry& robot,
                                     const RobotModel& model,
                                     const std::vector<std::vector<std::size_t>>& link_elements);
+// The hull of `link` is kHullGap apart from `object`'s (both non-empty) at the link's pose in
+// `robot`, so FCL finds no contact between the link's elements and the object.
+bool linkApartFromObject(const RefineData& data, const RobotData& robot, int link,
+                         const RefineObject& object);
 // The hulls of link_a and link_b (both with one) are kHullGap apart at the poses in `robot`, so
 // FCL finds no contact between their elements. `direction` starts the search and keeps the
 // separating direction.
