@@ -1,21 +1,27 @@
 // Exact refine mode (CollisionModelOptions::refine, docs/planner.md "Exact refine mode") on the
 // real Panda in MotionBenchMaker scenes: per scene, the same uniform joint states checked by
 // exact FCL, by the fused octree checker with conservative rounding, and by the same checker
-// refined with FCL, in one run. Prints per checker the mean check time (second pass over the
-// states), the share of FCL-free states it rejects (false positives), the contacts it misses,
-// and FCL's mean over its own. A plain program like planner_self_pair_tables_bench; needs
+// refined with FCL, in one run. Prints per checker the mean check time (the thread's CPU time,
+// fastest of kPasses passes over the states), the share of FCL-free states it rejects (false
+// positives), the contacts it misses, and FCL's mean over its own. A plain program like
+// planner_self_pair_tables_bench; needs
 // ../shared/data (MotionBenchMaker problems and the Panda).
 // For the refined rows also, per check: the contacts certain without FCL, the links (against
-// the environment) and link pairs FCL decided, and the link pairs cleared by their hulls.
+// the environment) and link pairs FCL decided, the link pairs cleared by their hulls, and the
+// self contacts certain without FCL (closed meshes whose surfaces cross).
 // SETTINGS picks rows (digits 0-3, e.g. 01 for a quick profile without the self-pair tables'
-// build). Usage: build/bench/planner_refine_bench [STATES] [SETS] [RESOLUTION] [SETTINGS]
-//        (default 5000 4 0.01 0123)
+// build); LINK_RATIO, when given, sets the refined rows' link trees to RESOLUTION x LINK_RATIO
+// (and their self trees with them), to choose that resolution by measurement.
+// Usage: build/bench/planner_refine_bench [STATES] [SETS] [RESOLUTION] [SETTINGS] [LINK_RATIO]
+//        (default 5000 4 0.01 0123, the library's link trees)
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <string>
 
 #include <ompl/util/Console.h>
@@ -31,6 +37,18 @@ namespace {
 using namespace octomotion;
 using Clock = std::chrono::steady_clock;
 
+// Each checker's time is its fastest pass over the states: on a shared machine the other
+// passes only add other programs' load.
+constexpr int kPasses = 4;
+
+// The checking thread's CPU time: on a shared machine, wall time also counts the time the
+// thread waits for a core, which differs between the rows of one run.
+double cpuSeconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
 double seconds(Clock::time_point a, Clock::time_point b) {
   return std::chrono::duration<double>(b - a).count();
 }
@@ -40,6 +58,7 @@ int run(int argc, char** argv) {
   const int sets = argc > 2 ? std::atoi(argv[2]) : 4;
   const double resolution = argc > 3 ? std::atof(argv[3]) : 0.01;
   const std::string settings = argc > 4 ? argv[4] : "0123";
+  const double exact_link_ratio = argc > 5 ? std::atof(argv[5]) : 0;
   if (count < 1 || sets < 1 || !(resolution > 0)) {
     throw InvalidArgument("STATES and SETS must be >= 1, RESOLUTION > 0");
   }
@@ -67,15 +86,15 @@ int run(int argc, char** argv) {
     const auto fcl = scene.fclModel();
     auto exact = fcl->makeScratch();
     std::vector<char> truth(states.size());
-    double fcl_seconds = 0;
-    for (int pass = 0; pass < 2; ++pass) {
-      const auto t0 = Clock::now();
+    double fcl_seconds = std::numeric_limits<double>::infinity();
+    for (int pass = 0; pass < kPasses; ++pass) {
+      const double t0 = cpuSeconds();
       for (std::size_t i = 0; i < states.size(); ++i) {
         fcl->setConfiguration(states[i].data(), states[i].size(), Eigen::Isometry3d::Identity(),
                               *exact);
         truth[i] = fcl->inCollision(*exact);
       }
-      fcl_seconds = seconds(t0, Clock::now());
+      fcl_seconds = std::min(fcl_seconds, cpuSeconds() - t0);
     }
     int free_states = 0;
     for (const char t : truth) free_states += !t;
@@ -93,6 +112,9 @@ int run(int argc, char** argv) {
       options.resolution = resolution;
       options.X_WB = scene.model->baseMount();
       options.refine = refine;
+      if (refine == RefineMode::kExact && exact_link_ratio > 0) {
+        options.link_resolution = resolution * exact_link_ratio;
+      }
       if (setting == 2) options.self_link_resolution = resolution * kDefaultLinkResolutionRatio;
       options.self_pair_tables = setting == 3;
       const auto b0 = Clock::now();
@@ -100,22 +122,26 @@ int run(int argc, char** argv) {
       const double build = seconds(b0, Clock::now());
       CheckScratch scratch = model.makeScratch();
       int false_positives = 0, missed = 0;
-      double check_seconds = 0;
+      double check_seconds = std::numeric_limits<double>::infinity();
       RefineCounts counts;
-      for (int pass = 0; pass < 2; ++pass) {
+      for (int pass = 0; pass < kPasses; ++pass) {
         const RefineCounts start = model.refineCounts(scratch);
         false_positives = missed = 0;
-        const auto t0 = Clock::now();
+        const double t0 = cpuSeconds();
         for (std::size_t i = 0; i < states.size(); ++i) {
           const bool hit = model.inCollision(states[i].data(), states[i].size(), options.X_WB,
                                              CheckerPath::kFused, scratch);
           false_positives += hit && !truth[i];
           missed += !hit && truth[i];
         }
-        check_seconds = seconds(t0, Clock::now());
+        check_seconds = std::min(check_seconds, cpuSeconds() - t0);
         const RefineCounts end = model.refineCounts(scratch);
-        counts = {end.certain_contacts - start.certain_contacts, end.fcl_links - start.fcl_links,
-                  end.fcl_pairs - start.fcl_pairs, end.hull_apart_pairs - start.hull_apart_pairs};
+        counts = {end.certain_contacts - start.certain_contacts,
+                  end.fcl_links - start.fcl_links,
+                  end.fcl_pairs - start.fcl_pairs,
+                  end.hull_apart_pairs - start.hull_apart_pairs,
+                  end.certain_self_contacts - start.certain_self_contacts,
+                  end.hull_apart_objects - start.hull_apart_objects};
       }
       const double mean = 1e6 * check_seconds / count;
       std::printf("  %-22s mean %8.3f us, FP %5.2f %%, missed %d, FCL / this %5.2f, build %.2f s\n",
@@ -128,11 +154,13 @@ int run(int argc, char** argv) {
       if (refine == RefineMode::kExact) {
         std::printf(
             "  %-22s per check: certain contacts %.3f, FCL links %.3f, FCL pairs %.3f, "
-            "hull-apart pairs %.3f\n",
+            "hull-apart pairs %.3f, certain self contacts %.3f, hull-apart objects %.3f\n",
             "", static_cast<double>(counts.certain_contacts) / count,
             static_cast<double>(counts.fcl_links) / count,
             static_cast<double>(counts.fcl_pairs) / count,
-            static_cast<double>(counts.hull_apart_pairs) / count);
+            static_cast<double>(counts.hull_apart_pairs) / count,
+            static_cast<double>(counts.certain_self_contacts) / count,
+            static_cast<double>(counts.hull_apart_objects) / count);
       }
     }
   }

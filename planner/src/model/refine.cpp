@@ -137,6 +137,7 @@ RefineData::RefineData(const RobotModel& model, const EnvironmentGeometry& envir
     for (std::size_t k = 0; k < object.shapes.size(); ++k) {
       extend(object.box_W, object.shapes[k].getAABB(), k == 0);
     }
+    object.hull_W = objectHull(item.spec, item.mesh);
     objects.push_back(std::move(object));
   }
   fcl_internal::RobotScratch prototypes;
@@ -145,6 +146,14 @@ RefineData::RefineData(const RobotModel& model, const EnvironmentGeometry& envir
     element_witnesses_E.push_back(witnessesOf(*element.collisionGeometry()));
   }
   link_hulls_L = linkHulls(*robot, model, link_elements);
+  for (const ConvexPoints& hull : link_hulls_L) {
+    Eigen::AlignedBox3d box_L;
+    for (std::size_t i = 0; i < hull.size(); ++i) box_L.extend(hull.point(i));
+    link_hull_boxes_L.emplace_back(box_L.center(), box_L.isEmpty()
+                                                       ? Eigen::Vector3d::Zero()
+                                                       : Eigen::Vector3d(box_L.sizes() / 2));
+  }
+  closed_links_L = closedLinkMeshes(*robot, model, link_elements);
 }
 
 RefineScratch& refineScratch(const RefineData& data, const RobotModel& model, std::uint64_t owner,
@@ -191,10 +200,19 @@ bool certainLinkContact(const RefineData& data, RefineScratch& r, const RobotDat
 bool refineLinkHits(const RefineData& data, RefineScratch& r, const RobotData& robot, int link) {
   refinePoseLink(data, r, robot, link);
   fcl_internal::RobotScratch& s = r.fcl;
+  // Per object: unknown (0), apart from the link's hull (1), not apart (2); decided on the
+  // first element that reaches FCL with it.
+  r.object_apart.assign(data.objects.size(), 0);
   for (std::size_t e : data.link_elements[static_cast<std::size_t>(link)]) {
     const fcl::CollisionObjectd& element = s.objects[e];
-    for (const RefineObject& object : data.objects) {
+    for (std::size_t o = 0; o < data.objects.size(); ++o) {
+      const RefineObject& object = data.objects[o];
       if (object.shapes.empty() || !object.box_W.overlap(element.getAABB())) continue;
+      if (r.object_apart[o] == 0) {
+        r.object_apart[o] = linkApartFromObject(data, robot, link, object) ? 1 : 2;
+        r.counts.hull_apart_objects += r.object_apart[o] == 1;
+      }
+      if (r.object_apart[o] == 1) continue;
       for (const fcl::CollisionObjectd& shape : object.shapes) {
         if (fcl_internal::collidePair(element, shape, s.request, s.result)) return true;
       }
@@ -253,21 +271,28 @@ bool environmentOctreePass(const CollisionModelParts& parts, const RefineData& d
   return false;
 }
 
-// The octree's pass over the self half: the checked pairs whose voxels meet, in
-// r.uncertain_pairs.
-void selfOctreePass(const CollisionModelParts& parts, const RefineData& data, RefineScratch& r,
+// The octree's pass over the self half: true on a certain contact, else the checked pairs
+// whose voxels meet in r.uncertain_pairs.
+bool selfOctreePass(const CollisionModelParts& parts, const RefineData& data, RefineScratch& r,
                     CheckerPath path, CheckScratch& scratch) {
+  using Verdict = SelfCollision::ExactVerdict;
   const LinkModels& links = parts.links;
   const std::vector<SelfPair>& pairs = parts.self.pairs;
   r.uncertain_pairs.clear();
   r.pair_directions.resize(pairs.size(), Eigen::Vector3d::Zero());
-  parts.self.confirmedInCollision(
+  return parts.self.confirmedInCollision(
       links, path, scratch,
       [&](std::size_t i) {
-        const bool apart = refineHullsApart(data, scratch.robot, links.links[pairs[i].a].link,
-                                            links.links[pairs[i].b].link, r.pair_directions[i]);
-        r.counts.hull_apart_pairs += apart;
-        return apart;
+        const int a = links.links[pairs[i].a].link, b = links.links[pairs[i].b].link;
+        if (refineHullsApart(data, scratch.robot, a, b, r.pair_directions[i])) {
+          ++r.counts.hull_apart_pairs;
+          return Verdict::kFree;
+        }
+        if (certainPairContact(data, scratch.robot, a, b)) {
+          ++r.counts.certain_self_contacts;
+          return Verdict::kContact;
+        }
+        return Verdict::kUnknown;
       },
       [&](const SelfPair& p) {
         r.uncertain_pairs.emplace_back(links.links[p.a].link, links.links[p.b].link);
@@ -309,8 +334,8 @@ bool OctreeCollisionModel::refinedEnvironmentInCollision(CheckerPath path,
 
 bool OctreeCollisionModel::refinedSelfInCollision(CheckerPath path, CheckScratch& scratch) const {
   detail::RefineScratch& r = detail::refineScratch(*refine_, robot_, id_, scratch.refine);
-  detail::selfOctreePass(*parts_, *refine_, r, path, scratch);
-  return detail::refineUncertainPairsHit(*refine_, r, scratch.robot);
+  return detail::selfOctreePass(*parts_, *refine_, r, path, scratch) ||
+         detail::refineUncertainPairsHit(*refine_, r, scratch.robot);
 }
 
 // The two halves in one query, so a link's FCL objects are posed once. The environment's FCL
@@ -322,8 +347,8 @@ bool OctreeCollisionModel::refinedLinksInCollision(CheckerPath path, CheckScratc
       detail::refineUncertainLinksHit(*refine_, r, scratch.robot)) {
     return true;
   }
-  detail::selfOctreePass(*parts_, *refine_, r, path, scratch);
-  return detail::refineUncertainPairsHit(*refine_, r, scratch.robot);
+  return detail::selfOctreePass(*parts_, *refine_, r, path, scratch) ||
+         detail::refineUncertainPairsHit(*refine_, r, scratch.robot);
 }
 
 RefineCounts OctreeCollisionModel::refineCounts(const CheckScratch& scratch) const {

@@ -3,14 +3,17 @@
 // triangle tests only report contacts between triangles, which lie inside their mesh's hull,
 // so apart hulls prove what FCL would answer without running it.
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <map>
+#include <variant>
 
 #include <fcl/geometry/bvh/BVH_model.h>
 #include <fcl/geometry/shape/box.h>
 #include <fcl/math/bv/OBBRSS.h>
 
 #include "internal/refine.h"
+#include "octomotion/motion/box_overlap.h"
 
 namespace octomotion::detail {
 
@@ -89,12 +92,53 @@ std::vector<ConvexPoints> linkHulls(const fcl_internal::RobotGeometry& robot,
   return hulls;
 }
 
+ConvexPoints objectHull(const EnvironmentObject& spec, const TriangleMesh& mesh) {
+  std::vector<Eigen::Vector3d> points_W;
+  double radius = 0;
+  if (spec.kind == EnvironmentObject::Kind::kPrimitive) {
+    if (const auto* box = std::get_if<Box>(&spec.primitive)) {
+      for (int corner = 0; corner < 8; ++corner) {
+        const Eigen::Vector3d sign((corner & 1) ? 1 : -1, (corner & 2) ? 1 : -1,
+                                   (corner & 4) ? 1 : -1);
+        points_W.push_back(spec.X_WO * Eigen::Vector3d(box->half_extents.cwiseProduct(sign)));
+      }
+    } else if (const auto* ball = std::get_if<Sphere>(&spec.primitive)) {
+      points_W.push_back(spec.X_WO.translation());
+      radius = ball->radius;
+    } else {
+      const auto& c = std::get<Cylinder>(spec.primitive);
+      points_W.push_back(spec.X_WO * Eigen::Vector3d(0, 0, c.length / 2));
+      points_W.push_back(spec.X_WO * Eigen::Vector3d(0, 0, -c.length / 2));
+      radius = c.radius;
+    }
+  } else if (spec.kind == EnvironmentObject::Kind::kMesh) {
+    for (const Eigen::Vector3d& v : mesh.vertices) points_W.push_back(spec.X_WO * v);
+  }
+  if (points_W.empty() || !(radius >= 0) || !std::isfinite(radius)) return {};
+  return ConvexPoints(points_W, radius);
+}
+
+bool linkApartFromObject(const RefineData& data, const RobotData& robot, int link,
+                         const RefineObject& object) {
+  const ConvexPoints& hull_L = data.link_hulls_L[static_cast<std::size_t>(link)];
+  if (hull_L.empty() || object.hull_W.empty()) return false;
+  return convexApart(hull_L, object.hull_W, robot.linkPose(link).inverse(), kHullGap);
+}
+
 bool refineHullsApart(const RefineData& data, const RobotData& robot, int link_a, int link_b,
                       Eigen::Vector3d& direction) {
   const ConvexPoints& a = data.link_hulls_L[static_cast<std::size_t>(link_a)];
   const ConvexPoints& b = data.link_hulls_L[static_cast<std::size_t>(link_b)];
   if (a.empty() || b.empty()) return false;
   const Eigen::Isometry3d X_AB = robot.linkPose(link_a).inverse() * robot.linkPose(link_b);
+  // The boxes hold the hulls' points (grown by their radii, zero for these hulls): boxes
+  // more than kHullGap apart leave the hulls so.
+  const auto& [ca_L, ha_L] = data.link_hull_boxes_L[static_cast<std::size_t>(link_a)];
+  const auto& [cb_L, hb_L] = data.link_hull_boxes_L[static_cast<std::size_t>(link_b)];
+  if (!boxesOverlap(ca_L, ha_L, X_AB.linear(), X_AB * cb_L, hb_L,
+                    kHullGap + a.radius() + b.radius())) {
+    return true;
+  }
   return convexApart(a, b, X_AB, kHullGap, &direction);
 }
 

@@ -29,13 +29,33 @@ struct RefineObject {
   // A box, ball or cylinder obstacle: the shape in its frame O (FCL treats it as a solid).
   std::optional<Primitive> primitive;
   Eigen::Isometry3d X_OW = Eigen::Isometry3d::Identity();
+  // In W, a convex set holding the object's solid (objectHull); empty for voxel objects. A
+  // link whose hull is apart from it is free of it for FCL (refineLinkHits).
+  ConvexPoints hull_W;
 };
+
+// A convex set holding `spec`'s solid in W: a box's corners, a ball's centre grown by its radius,
+// a cylinder's end centres grown by its radius (a capsule holds it), a mesh's vertices (its
+// triangles lie in their hull); empty for other objects.
+ConvexPoints objectHull(const EnvironmentObject& spec, const TriangleMesh& mesh);
 
 // A point of a robot element this deep inside a primitive obstacle makes FCL report a contact:
 // far above FCL's GJK tolerance (micrometres), far below any obstacle's size.
 inline constexpr double kCertainDepth = 1e-4;
 // Witness points kept per mesh element: its vertices, spread out (farthest first).
 inline constexpr std::size_t kWitnessPoints = 24;
+
+// A link that is one closed mesh, in its frame L, for certain self contacts
+// (certainPairContact): its vertices, its face planes with outward normals (n, d: n . p <= d
+// on the inner side) and, per face, the largest n . v over the vertices (the hull's extent
+// along n); empty otherwise.
+struct ClosedLinkMesh {
+  std::vector<Eigen::Vector3d> vertices_L;
+  std::vector<Eigen::Vector4d> planes_L;
+  std::vector<double> supports_L;
+  Eigen::Vector3d centroid_L = Eigen::Vector3d::Zero();  // of the vertices
+  bool empty() const { return planes_L.empty(); }
+};
 
 struct RefineData {
   RefineData(const RobotModel& robot, const EnvironmentGeometry& objects, const WorldGrid& grid,
@@ -53,6 +73,11 @@ struct RefineData {
   // corners); empty for a link with another shape. Two links whose hulls are apart cannot touch,
   // so a checked pair is cleared before any voxel or FCL test (refineHullsApart).
   std::vector<ConvexPoints> link_hulls_L;
+  // Per robot link with a hull: the box of its hull's points in L (centre, half sides), tested
+  // before GJK (refineHullsApart): tighter than the voxel boxes, and a few operations.
+  std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> link_hull_boxes_L;
+  // Per robot link: its closed mesh, or empty (closedLinkMeshes).
+  std::vector<ClosedLinkMesh> closed_links_L;
 };
 
 // Hulls closer than this are left to the octree and FCL: far above rounding in the poses,
@@ -73,6 +98,7 @@ struct RefineScratch {
   // Per self pair (SelfCollision::pairs): the last direction that separated its hulls, tried
   // first (a planner's nearby states are often separated the same way).
   std::vector<Eigen::Vector3d> pair_directions;
+  std::vector<char> object_apart;  // refineLinkHits' per-object hull verdicts
   RefineCounts counts;
 };
 
@@ -99,11 +125,24 @@ bool refineUncertainPairsHit(const RefineData& data, RefineScratch& r, const Rob
 std::vector<ConvexPoints> linkHulls(const fcl_internal::RobotGeometry& robot,
                                     const RobotModel& model,
                                     const std::vector<std::vector<std::size_t>>& link_elements);
+// The hull of `link` is kHullGap apart from `object`'s (both non-empty) at the link's pose in
+// `robot`, so FCL finds no contact between the link's elements and the object.
+bool linkApartFromObject(const RefineData& data, const RobotData& robot, int link,
+                         const RefineObject& object);
 // The hulls of link_a and link_b (both with one) are kHullGap apart at the poses in `robot`, so
 // FCL finds no contact between their elements. `direction` starts the search and keeps the
 // separating direction.
 bool refineHullsApart(const RefineData& data, const RobotData& robot, int link_a, int link_b,
                       Eigen::Vector3d& direction);
+// Each link that is one closed mesh (every edge in two triangles with windings that agree, one
+// surface, triangles with area), checked once at build time; empty entries for the others.
+std::vector<ClosedLinkMesh> closedLinkMeshes(
+    const fcl_internal::RobotGeometry& robot, const RobotModel& model,
+    const std::vector<std::vector<std::size_t>>& link_elements);
+// Without FCL: link_a and link_b are closed meshes and a vertex of one lies kCertainDepth
+// inside the other's every face plane (so inside its solid) while another lies kCertainDepth
+// outside its hull, so their surfaces cross and FCL's mesh test reports a contact.
+bool certainPairContact(const RefineData& data, const RobotData& robot, int link_a, int link_b);
 // FCL's exact distance from the robot's elements to the objects (0 in contact).
 double refineEnvironmentDistance(const RefineData& data, RefineScratch& r, const RobotData& robot);
 

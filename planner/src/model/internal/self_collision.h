@@ -76,19 +76,27 @@ class SelfCollision {
     }
     return pairsInCollision(links, path, scratch);
   }
-  // RefineMode::kExact: like inCollision, but a pair whose spheres meet is skipped when
-  // `certified_free(pair index)` proves it free (exact geometry), and a pair whose stages hit
-  // counts only when `confirm(pair)` (FCL on the two links) says so; the loop goes on past
-  // unconfirmed pairs. Always the pairs loop (the broad phase gives the same candidates).
-  template <class Free, class Confirm>
+  // What exact geometry says of a pair before its voxels (RefineMode::kExact).
+  enum class ExactVerdict { kFree, kContact, kUnknown };
+  // RefineMode::kExact: like inCollision, but a pair whose spheres meet is first decided by
+  // `exact(pair index)` (exact geometry): skipped when free, the answer when a contact; a pair
+  // left unknown whose stages hit counts only when `confirm(pair)` (FCL on the two links) says
+  // so; the loop goes on past unconfirmed pairs. Always the pairs loop (the broad phase gives
+  // the same candidates).
+  template <class Exact, class Confirm>
   bool confirmedInCollision(const LinkModels& links, CheckerPath path, CheckScratch& scratch,
-                            const Free& certified_free, const Confirm& confirm) const {
+                            const Exact& exact, const Confirm& confirm) const {
     placeCentres(links, scratch);
     for (std::size_t i = 0; i < pairs.size(); ++i) {
       const SelfPair& p = pairs[i];
-      if (spheresMeet(p, scratch.centres_W[p.a], scratch.centres_W[p.b]) &&
-          pairBoxesMeet(p, links, scratch) && !certified_free(i) &&
-          pairStagesHit(p, links, path, scratch) && confirm(p)) {
+      if (!spheresMeet(p, scratch.centres_W[p.a], scratch.centres_W[p.b]) ||
+          !pairBoxesMeet(p, links, scratch)) {
+        continue;
+      }
+      const ExactVerdict verdict = exact(i);
+      if (verdict == ExactVerdict::kContact) return true;
+      if (verdict == ExactVerdict::kUnknown && pairStagesHit(p, links, path, scratch) &&
+          confirm(p)) {
         return true;
       }
     }

@@ -309,6 +309,12 @@ struct RefineCounts {
   // Link pairs cleared by their hulls (the convex hulls of their meshes' vertices apart), before
   // any voxel or FCL test.
   std::uint64_t hull_apart_pairs = 0;
+  // Link pairs in contact for certain without voxels or FCL (two closed convex meshes whose
+  // surfaces cross); the check stops at the first.
+  std::uint64_t certain_self_contacts = 0;
+  // Link-object pairs of links FCL decided, cleared by the link's hull apart from the object's
+  // (a box's corners, a capsule about a cylinder, a mesh's vertices) before FCL.
+  std::uint64_t hull_apart_objects = 0;
 };
 
 // RefineMode::kExact: the posed FCL objects of one thread, opaque here, made by the first

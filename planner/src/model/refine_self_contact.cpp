@@ -1,0 +1,185 @@
+// RefineMode::kExact's certain self contacts (internal/refine.h): a checked pair of links, each
+// one closed mesh, is in contact for FCL when a vertex of one lies kCertainDepth inside
+// the other and another of its vertices kCertainDepth outside. The first link's surface is
+// connected and has points on both sides of the second's, so the two surfaces cross, and FCL's
+// mesh test (triangle against triangle) reports the crossing. Such a pair needs neither its
+// voxels nor FCL, and the check stops there.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <map>
+#include <numeric>
+#include <utility>
+
+#include <fcl/geometry/bvh/BVH_model.h>
+#include <fcl/math/bv/OBBRSS.h>
+
+#include "internal/refine.h"
+
+namespace octomotion::detail {
+
+namespace {
+
+// A link's mesh in L with each vertex once, and its triangles over them; empty unless the link
+// is one mesh element.
+struct IndexedMesh {
+  std::vector<Eigen::Vector3d> vertices_L;
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+};
+
+IndexedMesh indexedMesh(const fcl::CollisionGeometryd& geometry, const Eigen::Isometry3d& X_LE) {
+  IndexedMesh out;
+  if (geometry.getObjectType() != fcl::OT_BVH) return out;
+  const auto* mesh = dynamic_cast<const fcl::BVHModel<fcl::OBBRSSd>*>(&geometry);
+  if (mesh == nullptr || mesh->vertices == nullptr || mesh->tri_indices == nullptr) return out;
+  std::map<std::array<double, 3>, std::uint32_t> index;
+  for (int t = 0; t < mesh->num_tris; ++t) {
+    std::array<std::uint32_t, 3> triangle{};
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector3d p_L = X_LE * mesh->vertices[mesh->tri_indices[t][k]];
+      const auto [it, added] = index.emplace(std::array<double, 3>{p_L.x(), p_L.y(), p_L.z()},
+                                             static_cast<std::uint32_t>(out.vertices_L.size()));
+      if (added) out.vertices_L.push_back(p_L);
+      triangle[static_cast<std::size_t>(k)] = it->second;
+    }
+    out.triangles.push_back(triangle);
+  }
+  return out;
+}
+
+// Every edge in exactly two triangles (a closed surface) and every triangle reachable from the
+// first across edges (one surface).
+bool closedAndConnected(const IndexedMesh& mesh) {
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<std::size_t>> edges;
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    for (std::size_t k = 0; k < 3; ++k) {
+      const std::uint32_t i = mesh.triangles[t][k], j = mesh.triangles[t][(k + 1) % 3];
+      if (i == j) return false;
+      edges[{std::min(i, j), std::max(i, j)}].push_back(t);
+    }
+  }
+  std::vector<std::size_t> parent(mesh.triangles.size());
+  std::iota(parent.begin(), parent.end(), std::size_t{0});
+  auto root = [&](std::size_t t) {
+    while (parent[t] != t) t = parent[t] = parent[parent[t]];
+    return t;
+  };
+  for (const auto& [edge, triangles] : edges) {
+    if (triangles.size() != 2) return false;
+    parent[root(triangles[0])] = root(triangles[1]);
+  }
+  for (std::size_t t = 0; t < parent.size(); ++t) {
+    if (root(t) != root(0)) return false;
+  }
+  return true;
+}
+
+// The mesh's face planes with outward normals (n . p <= d inside each), when the triangles'
+// windings agree (each directed edge once) and enclose a positive volume (flipped when
+// negative); empty for a mesh with a triangle without area.
+std::vector<Eigen::Vector4d> outwardPlanes(const IndexedMesh& mesh) {
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> directed;
+  std::vector<Eigen::Vector4d> planes;
+  double volume6 = 0;
+  for (const auto& t : mesh.triangles) {
+    const Eigen::Vector3d &a = mesh.vertices_L[t[0]], &b = mesh.vertices_L[t[1]],
+                          &c = mesh.vertices_L[t[2]];
+    Eigen::Vector3d n = (b - a).cross(c - a);
+    if (!(n.norm() > 1e-12)) return {};
+    volume6 += a.dot(b.cross(c));
+    n.normalize();
+    planes.emplace_back(n.x(), n.y(), n.z(), n.dot(a));
+    for (std::size_t k = 0; k < 3; ++k) {
+      if (++directed[{t[k], t[(k + 1) % 3]}] != 1) return {};
+    }
+  }
+  if (!(std::abs(volume6) > 0)) return {};
+  if (volume6 < 0) {
+    for (Eigen::Vector4d& plane : planes) plane = -plane;
+  }
+  return planes;
+}
+
+// p lies kCertainDepth inside every face plane, so inside the solid: were it outside, the
+// closest surface point q would have an angle-weighted pseudonormal N with N . (p - q) > 0
+// (Baerentzen & Aanaes 2005), so p would lie on the outer side of a face at q.
+bool deepInsidePlanes(const std::vector<Eigen::Vector4d>& planes, const Eigen::Vector3d& p) {
+  for (const Eigen::Vector4d& plane : planes) {
+    if (plane.head<3>().dot(p) > plane.w() - kCertainDepth) return false;
+  }
+  return true;
+}
+
+// p lies kCertainDepth beyond the mesh's vertices along a face normal, so outside its hull.
+bool deepOutsideHull(const ClosedLinkMesh& mesh, const Eigen::Vector3d& p) {
+  for (std::size_t f = 0; f < mesh.planes_L.size(); ++f) {
+    if (mesh.planes_L[f].head<3>().dot(p) >= mesh.supports_L[f] + kCertainDepth) return true;
+  }
+  return false;
+}
+
+// A vertex of `mover` (placed in `other`'s frame by X_OM) deep inside `other` and one deep
+// outside: the candidates are mover's vertices nearest to and farthest from other's centroid.
+bool crosses(const ClosedLinkMesh& mover, const ClosedLinkMesh& other,
+             const Eigen::Isometry3d& X_OM) {
+  const Eigen::Vector3d c_M = X_OM.inverse() * other.centroid_L;
+  std::size_t nearest = 0, farthest = 0;
+  double near2 = std::numeric_limits<double>::infinity(), far2 = -1;
+  for (std::size_t i = 0; i < mover.vertices_L.size(); ++i) {
+    const double d2 = (mover.vertices_L[i] - c_M).squaredNorm();
+    if (d2 < near2) {
+      near2 = d2;
+      nearest = i;
+    }
+    if (d2 > far2) {
+      far2 = d2;
+      farthest = i;
+    }
+  }
+  return deepInsidePlanes(other.planes_L, X_OM * mover.vertices_L[nearest]) &&
+         deepOutsideHull(other, X_OM * mover.vertices_L[farthest]);
+}
+
+}  // namespace
+
+std::vector<ClosedLinkMesh> closedLinkMeshes(
+    const fcl_internal::RobotGeometry& robot, const RobotModel& model,
+    const std::vector<std::vector<std::size_t>>& link_elements) {
+  fcl_internal::RobotScratch prototypes;
+  robot.initScratch(model, prototypes);
+  std::vector<ClosedLinkMesh> meshes(link_elements.size());
+  for (std::size_t l = 0; l < link_elements.size(); ++l) {
+    const std::vector<CollisionElement>& collision = model.link(static_cast<int>(l)).collision;
+    // RobotGeometry makes one element per collision element, in order; one mesh only.
+    if (link_elements[l].size() != 1 || collision.size() != 1) continue;
+    const IndexedMesh mesh = indexedMesh(
+        *prototypes.objects[link_elements[l][0]].collisionGeometry(), collision[0].X_LE);
+    if (mesh.vertices_L.size() < 4 || !closedAndConnected(mesh)) continue;
+    ClosedLinkMesh& out = meshes[l];
+    out.planes_L = outwardPlanes(mesh);
+    if (out.planes_L.empty()) continue;
+    out.vertices_L = mesh.vertices_L;
+    for (const Eigen::Vector3d& v : mesh.vertices_L) out.centroid_L += v;
+    out.centroid_L /= static_cast<double>(mesh.vertices_L.size());
+    for (const Eigen::Vector4d& plane : out.planes_L) {
+      double support = -std::numeric_limits<double>::infinity();
+      for (const Eigen::Vector3d& v : mesh.vertices_L) {
+        support = std::max(support, plane.head<3>().dot(v));
+      }
+      out.supports_L.push_back(support);
+    }
+  }
+  return meshes;
+}
+
+bool certainPairContact(const RefineData& data, const RobotData& robot, int link_a, int link_b) {
+  const ClosedLinkMesh& a = data.closed_links_L[static_cast<std::size_t>(link_a)];
+  const ClosedLinkMesh& b = data.closed_links_L[static_cast<std::size_t>(link_b)];
+  if (a.empty() || b.empty()) return false;
+  const Eigen::Isometry3d X_AB = robot.linkPose(link_a).inverse() * robot.linkPose(link_b);
+  return crosses(b, a, X_AB) || crosses(a, b, X_AB.inverse());
+}
+
+}  // namespace octomotion::detail

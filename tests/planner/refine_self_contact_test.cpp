@@ -1,0 +1,108 @@
+// Exact refine mode's shortcuts past FCL. Certain self contacts
+// (planner/src/model/refine_self_contact.cpp): a checked pair of closed-mesh links with a vertex
+// of one deep inside the other and another deep outside is called in contact without voxels or
+// FCL. Property: on the real Panda (no environment, so every contact is a self contact) at
+// uniform random states (fixed seed), every check that called a self contact certain is one FCL
+// finds in self collision, and the refined answer is FCL's on every state. Link-object pairs
+// cleared by hulls (objectHull, refine_hulls.cpp): among boxes, balls and cylinders around the
+// Panda, the refined environment answer is FCL's on every state while the hulls clear pairs
+// FCL would otherwise test. Not vacuous: each shortcut fires. Skipped without
+// ../shared/data/panda.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "octomotion/planner/model/collision_model.h"
+#include "octomotion/planner/reference/fcl_collision_model.h"
+#include "octomotion/planner/scene/environment_geometry.h"
+
+namespace octomotion {
+namespace {
+
+const std::string kPanda = std::string(OCTOMOTION_SOURCE_DIR) + "/../shared/data/panda";
+
+TEST(RefineSelfContact, EveryCertainSelfContactIsAnFclContact) {
+  if (!std::filesystem::exists(kPanda + "/panda.urdf")) GTEST_SKIP() << "no Panda";
+  RobotModel robot = RobotModel::fromUrdfFile(kPanda + "/panda.urdf");
+  robot.loadSrdfFile(kPanda + "/panda.srdf");
+  const EnvironmentGeometry none = EnvironmentGeometry::load({});
+  CollisionModelOptions options;
+  options.refine = RefineMode::kExact;
+  const OctreeCollisionModel model(robot, none, options);
+  const FclCollisionModel fcl(robot, none);
+  auto exact = fcl.makeScratch();
+  CheckScratch scratch = model.makeScratch();
+  std::mt19937_64 rng(0x5e1f);
+  std::size_t certain_states = 0, fcl_contacts = 0, wrong = 0, disagreements = 0;
+  for (int state = 0; state < 3000; ++state) {
+    std::vector<double> q;
+    for (const Variable& v : robot.variables()) {
+      q.push_back(std::uniform_real_distribution<double>(v.lower, v.upper)(rng));
+    }
+    fcl.setConfiguration(q.data(), q.size(), Eigen::Isometry3d::Identity(), *exact);
+    const bool truth = fcl.selfInCollision(*exact);
+    fcl_contacts += truth;
+    const std::uint64_t before = model.refineCounts(scratch).certain_self_contacts;
+    const bool hit = model.inCollision(q.data(), q.size(), Eigen::Isometry3d::Identity(),
+                                       CheckerPath::kFused, scratch);
+    const bool certain = model.refineCounts(scratch).certain_self_contacts > before;
+    certain_states += certain;
+    if (certain && !truth) {
+      ADD_FAILURE() << "certain self contact FCL does not find, state " << state;
+      ++wrong;
+    }
+    disagreements += hit != truth;
+  }
+  EXPECT_EQ(wrong, 0u);
+  EXPECT_EQ(disagreements, 0u);
+  // Most of FCL's self contacts are called certain; the rest went to FCL.
+  EXPECT_GT(certain_states, fcl_contacts / 2);
+  EXPECT_GT(fcl_contacts, 50u);
+  EXPECT_LT(model.refineCounts(scratch).fcl_pairs, fcl_contacts);
+}
+
+TEST(RefineSelfContact, LinksClearedByObjectHullsAreFreeForFcl) {
+  if (!std::filesystem::exists(kPanda + "/panda.urdf")) GTEST_SKIP() << "no Panda";
+  RobotModel robot = RobotModel::fromUrdfFile(kPanda + "/panda.urdf");
+  robot.loadSrdfFile(kPanda + "/panda.srdf");
+  std::vector<EnvironmentObject> objects(3);
+  objects[0].primitive = Box{Eigen::Vector3d(0.15, 0.3, 0.02)};
+  objects[0].X_WO =
+      Eigen::Translation3d(0.45, 0, 0.4) * Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitY());
+  objects[1].primitive = Cylinder{0.05, 0.5};
+  objects[1].X_WO =
+      Eigen::Translation3d(-0.1, 0.45, 0.5) * Eigen::AngleAxisd(0.7, Eigen::Vector3d::UnitX());
+  objects[2].primitive = Sphere{0.12};
+  objects[2].X_WO.translation() = Eigen::Vector3d(0.1, -0.45, 0.7);
+  for (std::size_t i = 0; i < objects.size(); ++i) objects[i].name = "o" + std::to_string(i);
+  const EnvironmentGeometry environment = EnvironmentGeometry::load(objects);
+  CollisionModelOptions options;
+  options.refine = RefineMode::kExact;
+  const OctreeCollisionModel model(robot, environment, options);
+  const FclCollisionModel fcl(robot, environment);
+  auto exact = fcl.makeScratch();
+  CheckScratch scratch = model.makeScratch();
+  std::mt19937_64 rng(0x0b1e);
+  std::size_t contacts = 0, disagreements = 0;
+  for (int state = 0; state < 3000; ++state) {
+    std::vector<double> q;
+    for (const Variable& v : robot.variables()) {
+      q.push_back(std::uniform_real_distribution<double>(v.lower, v.upper)(rng));
+    }
+    fcl.setConfiguration(q.data(), q.size(), Eigen::Isometry3d::Identity(), *exact);
+    const bool truth = fcl.environmentInCollision(*exact);
+    contacts += truth;
+    model.robot().forwardKinematics(q.data(), q.size(), scratch.robot,
+                                    Eigen::Isometry3d::Identity());
+    disagreements += model.environmentInCollision(CheckerPath::kFused, scratch) != truth;
+  }
+  EXPECT_EQ(disagreements, 0u);
+  EXPECT_GT(contacts, 50u);
+  EXPECT_GT(model.refineCounts(scratch).hull_apart_objects, 0u);
+}
+
+}  // namespace
+}  // namespace octomotion
