@@ -29,6 +29,9 @@ struct RefineObject {
   // A box, ball or cylinder obstacle: the shape in its frame O (FCL treats it as a solid).
   std::optional<Primitive> primitive;
   Eigen::Isometry3d X_OW = Eigen::Isometry3d::Identity();
+  // A primitive's exact or outer hull in O (primitiveHull); empty for other objects, whose hull
+  // may hold points far from them (a concave mesh around a link).
+  ConvexPoints hull_O;
 };
 
 // A point of a robot element this deep inside a primitive obstacle makes FCL report a contact:
@@ -74,6 +77,11 @@ struct RefineScratch {
   // first (a planner's nearby states are often separated the same way).
   std::vector<Eigen::Vector3d> pair_directions;
   RefineCounts counts;
+  // Exact distances for the certified motion validator (refine_clearance.cpp): link-object and
+  // link-link distances whose hull bound reached what was asked, and FCL distance calls (one per
+  // element and shape pair) for the others.
+  std::uint64_t hull_distances = 0;
+  std::uint64_t fcl_distances = 0;
 };
 
 // The thread's refine scratch for a new query at the link poses in `robot` (FK done), made on
@@ -104,6 +112,9 @@ std::vector<ConvexPoints> linkHulls(const fcl_internal::RobotGeometry& robot,
 // separating direction.
 bool refineHullsApart(const RefineData& data, const RobotData& robot, int link_a, int link_b,
                       Eigen::Vector3d& direction);
+// The hull in its frame of a box, ball or cylinder (convex_gap.h): a distance to it is at most
+// the distance to the solid.
+ConvexPoints primitiveHull(const Primitive& shape);
 // FCL's exact distance from the robot's elements to the objects (0 in contact).
 double refineEnvironmentDistance(const RefineData& data, RefineScratch& r, const RobotData& robot);
 
