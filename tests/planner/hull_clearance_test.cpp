@@ -1,13 +1,12 @@
-// Exact refine's distances for the certified motion validator with hull bounds in front of FCL
-// (planner/src/model/refine_clearance.cpp): a link-object or link-link distance whose convex
-// hulls' certified bound reaches what the validator asks is answered by the bound, FCL's distance
-// runs only for the others. On the real Panda in MotionBenchMaker scenes (a grasp near a box on a
-// table, a box, a thin bookshelf), at random valid states near obstacles (fixed seeds): each
-// link's refined clearance, capped at a random value, never exceeds FCL's exact distance from
-// that link to the environment and is min(FCL's distance, cap) wherever the validator asks for an
-// exact one; each checked self pair's refined distance is min(FCL's distance, cap); and edges the
-// certified validator accepts are free for exact FCL at 500 states each. Skipped without
-// ../shared/data.
+// Exact refine's distances for the certified motion validator from convex hulls
+// (planner/src/model/refine_clearance.cpp): a link-object or link-link distance is its hulls'
+// certified lower bound, FCL's distance only within an eighth of a voxel of contact. On the real
+// Panda in MotionBenchMaker scenes (a grasp near a box on a table, a box, a thin bookshelf), at
+// random valid states near obstacles (fixed seeds): each link's refined clearance, capped at a
+// random value, never exceeds FCL's exact distance from that link to the environment and, where
+// the validator asks for a tight one, is within kClose of it below the cap; each checked self
+// pair's refined distance likewise; and edges the certified validator accepts are free for exact
+// FCL at 500 states each. Skipped without ../shared/data.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -31,6 +30,11 @@
 
 namespace octomotion {
 namespace {
+
+// How far below FCL's distance a hull bound may fall on the Panda: its collision meshes are
+// nearly convex, the scenes' boxes are exact hulls and their cylinders' outer prisms are wider by
+// 0.5 % of the radius (a fraction of a millimetre for these).
+constexpr double kClose = 1e-3;
 
 class HullClearance : public ::testing::TestWithParam<const char*> {
  protected:
@@ -90,7 +94,7 @@ class HullClearance : public ::testing::TestWithParam<const char*> {
   std::mt19937_64 rng_{0x4d11};
 };
 
-TEST_P(HullClearance, RefinedClearancesAreFclsDistancesBelowTheCap) {
+TEST_P(HullClearance, RefinedClearancesAreLowerBoundsCloseToFclsDistances) {
   const RobotModel& robot = scene_.model->robot();
   const auto links = static_cast<std::size_t>(robot.linkCount());
   auto fcl_scratch = fcl_->makeBackendScratch();
@@ -115,7 +119,7 @@ TEST_P(HullClearance, RefinedClearancesAreFclsDistancesBelowTheCap) {
       if (exact[l] < near - 1e-5) {
         ++asked;
         at_cap += exact[l] >= caps[l];
-        EXPECT_NEAR(std::min(refined[l], caps[l]), std::min(exact[l], caps[l]), 1e-5)
+        EXPECT_GE(std::min(refined[l], caps[l]), std::min(exact[l], caps[l]) - kClose)
             << name << " state " << state;
       }
     }
@@ -124,7 +128,7 @@ TEST_P(HullClearance, RefinedClearancesAreFclsDistancesBelowTheCap) {
   EXPECT_GT(at_cap, 10);  // and some farther than asked
 }
 
-TEST_P(HullClearance, RefinedPairDistancesAreFclsDistancesBelowTheCap) {
+TEST_P(HullClearance, RefinedPairDistancesAreLowerBoundsCloseToFclsDistances) {
   const RobotModel& robot = scene_.model->robot();
   auto fcl_scratch = fcl_->makeBackendScratch();
   auto octree_scratch = octree_->makeBackendScratch();
@@ -139,7 +143,9 @@ TEST_P(HullClearance, RefinedPairDistancesAreFclsDistancesBelowTheCap) {
       const double exact = fcl_->linkPairDistance(*fcl_scratch, a, b, inf);
       const double refined = octree_->linkPairDistance(*octree_scratch, a, b, cap);
       (exact < cap ? below : above) += 1;
-      EXPECT_NEAR(refined, std::min(exact, cap), 1e-5)
+      EXPECT_LE(refined, std::min(exact, cap) + 1e-5)
+          << robot.link(a).name << " / " << robot.link(b).name << " state " << state;
+      EXPECT_GE(refined, std::min(exact, cap) - kClose)
           << robot.link(a).name << " / " << robot.link(b).name << " state " << state;
     }
   }

@@ -323,13 +323,8 @@ double convexDistanceBelow(const ConvexPoints& a, const ConvexPoints& b,
       best = v;
     }
     if (bound >= cap) break;
-    // Once v is a point of the simplex (a point of a - b), |v| less the radii bounds the
-    // distance from above: below the cap, the cap cannot be reached. No progress left (the
-    // distance found) or a full simplex: stop.
-    if ((s.n > 0 && std::isfinite(cap) && len - radii < cap) ||
-        len * len - vw <= 1e-9 * len * len || s.n == 4) {
-      break;
-    }
+    // No progress left (the distance found) or a full simplex: stop.
+    if (len * len - vw <= 1e-9 * len * len || s.n == 4) break;
     s.p[static_cast<std::size_t>(s.n++)] = w;
     // The origin inside the simplex (the hulls overlap) or a degenerate simplex: stop.
     if (!reduce(s, v) || !(v.squaredNorm() > 0)) break;

@@ -1,10 +1,11 @@
-// RefineMode::kExact's exact distances for the certified motion validator
+// RefineMode::kExact's distances for the certified motion validator
 // (OctreeCollisionModel::refineClearancesPerLink, refinedPairDistance), on the links (and
 // pairs) whose cheaper bound is below what the validator needs. The validator needs only lower
 // bounds: the distance between convex hulls holding the geometry (a link's hull holds its
 // triangles, a primitive obstacle is its own hull or lies in its outer hull) is one, certified
-// by convexDistanceBelow, and costs a GJK run. FCL's distance runs only where that bound falls
-// short of what was asked (a hull wrapping around an object, or true contact nearby).
+// by convexDistanceBelow, and costs a GJK run. It is the answer unless it is within a fraction
+// of a voxel of contact: there FCL's distance between the meshes decides, where a hull wraps
+// around an object (an open gripper around a grasped box) or the geometry nearly touches.
 #include <algorithm>
 #include <cstddef>
 #include <variant>
@@ -24,14 +25,22 @@ ConvexPoints primitiveHull(const Primitive& shape) {
 
 namespace {
 
+// Hull bounds above this are the answer even below what was asked. Below it the validator is
+// near its minimum travel (a sixteenth of the resolution), where a bound looser than FCL's
+// distance (hulls overlapping around an object, concave links) would reject edges FCL proves.
+double hullTrusted(const WorldGrid& grid) {
+  return grid.voxelSize() / 8;
+}
+
 double distanceToBox(const fcl::AABBd& box, const Eigen::Vector3d& p) {
   return (box.min_ - p).cwiseMax(p - box.max_).cwiseMax(0.0).norm();
 }
 
-// The distance from `link`'s elements to the environment's objects, or `cap` when at least
-// `cap`: per object, the hulls' bound when it reaches what is still asked, else FCL's distance.
+// A lower bound on the distance from `link`'s elements to the environment's objects, or `cap`
+// when at least `cap`: per object, the hulls' bound when it reaches the best so far or is above
+// `trusted`, else FCL's distance.
 double refineLinkDistance(const RefineData& data, RefineScratch& r, const RobotData& robot,
-                          int link, double cap) {
+                          int link, double cap, double trusted) {
   const ConvexPoints& hull_L = data.link_hulls_L[static_cast<std::size_t>(link)];
   const Eigen::Isometry3d& X_WL = robot.linkPose(link);
   // The link's hull lies in this ball: most objects are farther than it is from what is asked.
@@ -43,10 +52,13 @@ double refineLinkDistance(const RefineData& data, RefineScratch& r, const RobotD
     if (object.shapes.empty()) continue;
     if (!hull_L.empty()) {
       if (distanceToBox(object.box_W, centre_W) - reach >= best) continue;
-      if (!object.hull_O.empty() &&
-          convexDistanceBelow(object.hull_O, hull_L, object.X_OW * X_WL, best) >= best) {
-        ++r.hull_distances;
-        continue;
+      if (!object.hull_O.empty()) {
+        const double h = convexDistanceBelow(object.hull_O, hull_L, object.X_OW * X_WL, best);
+        if (h >= best || h > trusted) {
+          ++r.hull_distances;
+          best = std::min(best, h);
+          continue;
+        }
       }
     }
     if (!posed) {
@@ -73,8 +85,9 @@ void OctreeCollisionModel::refineClearancesPerLink(const CheckScratch& scratch, 
                                                    double* per_link) const {
   if (!refine_) return;
   // Farther than two voxels the grid's bound is within its own looseness of the distance, and
-  // an exact distance costs more than the bisection the looser bound asks for.
+  // a tighter bound costs more than the bisection the looser one asks for.
   const double near = 2 * grid().voxelSize();
+  const double trusted = detail::hullTrusted(grid());
   detail::RefineScratch* r = nullptr;  // made on the first link asked
   for (int l = 0; l < robot_.linkCount(); ++l) {
     if (caps[l] <= 0 || per_link[l] >= caps[l] || per_link[l] >= near ||
@@ -82,7 +95,8 @@ void OctreeCollisionModel::refineClearancesPerLink(const CheckScratch& scratch, 
       continue;
     }
     if (r == nullptr) r = &detail::refineScratch(*refine_, robot_, id_, scratch.refine);
-    per_link[l] = detail::refineLinkDistance(*refine_, *r, scratch.robot, l, caps[l]);
+    per_link[l] = std::max(
+        per_link[l], detail::refineLinkDistance(*refine_, *r, scratch.robot, l, caps[l], trusted));
   }
 }
 
@@ -95,9 +109,10 @@ double OctreeCollisionModel::refinedPairDistance(const CheckScratch& scratch, in
   if (!hull_a.empty() && !hull_b.empty()) {
     const Eigen::Isometry3d X_AB =
         scratch.robot.linkPose(link_a).inverse() * scratch.robot.linkPose(link_b);
-    if (convexDistanceBelow(hull_a, hull_b, X_AB, cap) >= cap) {
+    const double h = convexDistanceBelow(hull_a, hull_b, X_AB, cap);
+    if (h >= cap || h > detail::hullTrusted(grid())) {
       ++r.hull_distances;
-      return cap;
+      return std::min(h, cap);
     }
   }
   detail::refinePoseLink(*refine_, r, scratch.robot, link_a);

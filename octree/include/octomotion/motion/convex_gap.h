@@ -71,9 +71,8 @@ bool convexApart(const ConvexPoints& a, const ConvexPoints& b, const Eigen::Isom
 // X_AB): the width of the slab between them along GJK's last direction, taken over every point
 // of both sets, less their radii and a nanometre for rounding. GJK only proposes the direction,
 // so a wrong or unfinished run makes the bound smaller, never too large. 0 when they overlap.
-// GJK stops early once the bound reaches `cap` or the distance is known to be below `cap` (the
-// bound is then whatever the run got to); with an infinite cap it runs until the distance is
-// found to about 1e-9 relative, so for convex sets the bound is their distance up to that.
+// GJK stops early once the bound reaches `cap`; otherwise it runs until the distance is found
+// to about 1e-9 relative, so for convex sets the bound is their distance up to that.
 // `direction_A` as in convexApart: it starts the search and receives the bound's direction.
 double convexDistanceBelow(const ConvexPoints& a, const ConvexPoints& b,
                            const Eigen::Isometry3d& X_AB, double cap,
