@@ -4,7 +4,8 @@
 // on the two support values computed for that direction over every point, so a plane between
 // the sets is proven whatever the iteration did. Used by exact refine mode to clear a robot
 // link pair before any voxel or mesh test: two meshes whose vertex hulls are apart cannot share
-// a triangle contact.
+// a triangle contact. The same certificate bounds their distance from below
+// (convexDistanceBelow), with hulls of the scene's primitives (boxHull, ballHull, cylinderHull).
 #pragma once
 
 #include <array>
@@ -68,11 +69,11 @@ bool convexApart(const ConvexPoints& a, const ConvexPoints& b, const Eigen::Isom
                  double gap, Eigen::Vector3d* direction_A = nullptr);
 
 // A certified lower bound (>= 0) on the distance between `a` and `b` (b placed in a's frame by
-// X_AB): the width of the slab between them along GJK's last direction, taken over every point
-// of both sets, less their radii and a nanometre for rounding. GJK only proposes the direction,
-// so a wrong or unfinished run makes the bound smaller, never too large. 0 when they overlap.
-// GJK stops early once the bound reaches `cap`; otherwise it runs until the distance is found
-// to about 1e-9 relative, so for convex sets the bound is their distance up to that.
+// X_AB): the width of the slab between them along the best of GJK's directions, taken over
+// every point of both sets, less their radii and a nanometre for rounding. GJK only proposes the
+// direction, so a wrong or unfinished run makes the bound smaller, never too large. 0 when they
+// overlap. GJK stops early once the bound reaches `cap`; otherwise it runs until the distance is
+// found to about 1e-9 relative, so for convex sets the bound is their distance up to that.
 // `direction_A` as in convexApart: it starts the search and receives the bound's direction.
 double convexDistanceBelow(const ConvexPoints& a, const ConvexPoints& b,
                            const Eigen::Isometry3d& X_AB, double cap,

@@ -77,9 +77,9 @@ struct RefineScratch {
   // first (a planner's nearby states are often separated the same way).
   std::vector<Eigen::Vector3d> pair_directions;
   RefineCounts counts;
-  // Exact distances for the certified motion validator (refine_clearance.cpp): link-object and
-  // link-link distances whose hull bound reached what was asked, and FCL distance calls (one per
-  // element and shape pair) for the others.
+  // Distances for the certified motion validator (refine_clearance.cpp): link-object and
+  // link-link distances answered by their hulls' bound, and FCL distance calls (one per element
+  // and shape pair) for the others.
   std::uint64_t hull_distances = 0;
   std::uint64_t fcl_distances = 0;
 };
