@@ -7,7 +7,7 @@
 # Sections: differential motion octree builders translate primitive_contact planner_environment
 #           planner_selfcollision planner_clearance pointoctree self_pair_tables check_breakdown
 #           plan_split validity_checker broadphase world_updates refine motion_validator
-#           tradeoff python_check_many bench_set_mbm bench_set_rigid defaults
+#           tradeoff python_check_many bench_set_mbm bench_set_rigid defaults hull_distance
 # Environment: OCTOMOTION_DIFFERENTIAL_STATES (default 1000000).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -20,7 +20,7 @@ out=$root/docs/benchmarks.md
 all=(differential motion octree builders translate primitive_contact planner_environment
   planner_selfcollision planner_clearance pointoctree self_pair_tables check_breakdown plan_split
   validity_checker broadphase world_updates refine motion_validator tradeoff python_check_many
-  bench_set_mbm bench_set_rigid defaults)
+  bench_set_mbm bench_set_rigid defaults hull_distance)
 selected=("$@")
 ((${#selected[@]})) || selected=("${all[@]}")
 
@@ -56,6 +56,8 @@ add world_updates "A world that changes between plans, the Panda at 1 cm (planne
   planner_world_updates_bench "$gbench"
 add refine "Exact refine mode, the Panda in MotionBenchMaker scenes at 1 cm (planner_refine_bench)" \
   planner_refine_bench "5000 4 0.01"
+add hull_distance "Hull distance bounds against FCL's distance, Panda self pairs (planner_hull_distance_bench)" \
+  planner_hull_distance_bench "$gbench"
 add motion_validator "Motion validators on the Panda MotionBenchMaker problems (planner_motion_validator_bench)" \
   planner_motion_validator_bench "--benchmark_repetitions=3 --benchmark_report_aggregates_only=true"
 add tradeoff "Speed/accuracy trade study (tradeoff_bench; docs/trade-off.md)" tradeoff_bench \

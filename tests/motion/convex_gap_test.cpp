@@ -6,9 +6,11 @@
 // convex mesh the climb along edges finds the support, and edges never change an answer's proof.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -218,6 +220,208 @@ TEST(ConvexGap, RefusesEmptyAndNonFiniteInput) {
   EXPECT_THROW(ConvexPoints({Eigen::Vector3d::Zero()}, {{0, 0, 1}}), InvalidArgument);
   EXPECT_FALSE(convexApart(ConvexPoints(), ConvexPoints({Eigen::Vector3d::Zero()}),
                            Eigen::Isometry3d::Identity(), 0));
+}
+
+// convexDistanceBelow: a certified lower bound. Brute force over every point: its direction
+// leaves the sets at least the bound apart (so it never exceeds their distance), and it never
+// exceeds the closest pair of points (less the radii). Random clouds, radii, poses and caps.
+TEST(ConvexDistance, EveryBoundHasItsSlabAndStaysBelowEveryPointPair) {
+  std::mt19937_64 rng(0xd157);
+  std::uniform_int_distribution<int> count(1, 60);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::vector<Eigen::Vector3d> pa, pb;
+  std::vector<std::array<std::uint32_t, 3>> ta, tb;
+  int positive = 0, zero = 0;
+  for (int trial = 0; trial < 4000; ++trial) {
+    const bool meshes = trial % 3 == 0;  // non-convex meshes: climbs that stop short
+    if (meshes) {
+      ellipsoidMesh(rng, 0.3, pa, ta);
+      ellipsoidMesh(rng, 0.3, pb, tb);
+    } else {
+      pa = randomCloud(rng, count(rng), 0.5);
+      pb = randomCloud(rng, count(rng), 0.5);
+    }
+    const double ra = 0.1 * unit(rng), rb = 0.1 * unit(rng);
+    const double cap = trial % 2 == 0 ? std::numeric_limits<double>::infinity() : unit(rng);
+    const Eigen::Isometry3d X_AB = randomPose(rng, meshes ? 0.8 : 2.5);
+    const ConvexPoints a = meshes ? ConvexPoints(pa, ta, ra) : ConvexPoints(pa, ra);
+    const ConvexPoints b = meshes ? ConvexPoints(pb, tb, rb) : ConvexPoints(pb, rb);
+    Eigen::Vector3d v = Eigen::Vector3d::Zero();
+    const double bound = convexDistanceBelow(a, b, X_AB, cap, &v);
+    ASSERT_GE(bound, 0.0);
+    double closest = std::numeric_limits<double>::infinity();
+    for (const auto& p : pa) {
+      for (const auto& q : pb) closest = std::min(closest, (p - X_AB * q).norm());
+    }
+    EXPECT_LE(bound, std::max(0.0, closest - ra - rb)) << "trial " << trial;
+    if (bound > 0) {
+      ++positive;
+      EXPECT_GE(gapAlong(pa, pb, X_AB, v) - ra - rb, bound) << "trial " << trial;
+    } else {
+      ++zero;
+    }
+  }
+  EXPECT_GT(positive, 300);  // both answers occur
+  EXPECT_GT(zero, 300);
+}
+
+// Convex sets at a known distance s (two sides of a slab, one point of each on its faces):
+// without a cap the bound is s up to GJK's tolerance; with one, it reaches a cap below s and
+// stays below a cap above it; sets sharing a point get 0.
+TEST(ConvexDistance, FindsTheDistanceOfSetsAcrossASlab) {
+  std::mt19937_64 rng(0xd51a);
+  std::uniform_int_distribution<int> count(1, 200);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int trial = 0; trial < 2000; ++trial) {
+    const double s = 1e-4 + 0.3 * unit(rng);
+    auto a_W = randomCloud(rng, count(rng), 0.5), b_W = randomCloud(rng, count(rng), 0.5);
+    for (auto& p : a_W) p.x() = -s / 2 - (p.x() + 0.5);
+    for (auto& p : b_W) p.x() = s / 2 + (p.x() + 0.5);
+    a_W[0] = Eigen::Vector3d(-s / 2, 0, 0);
+    b_W[0] = Eigen::Vector3d(s / 2, 0, 0);
+    const Eigen::Isometry3d X_WA = randomPose(rng, 1.0), X_WB = randomPose(rng, 1.0);
+    std::vector<Eigen::Vector3d> a, b;
+    for (const auto& p : a_W) a.push_back(X_WA.inverse() * p);
+    for (const auto& p : b_W) b.push_back(X_WB.inverse() * p);
+    const Eigen::Isometry3d X_AB = X_WA.inverse() * X_WB;
+    const ConvexPoints ca(a), cb(b);
+    const double inf = std::numeric_limits<double>::infinity();
+    // GJK stops when |v|^2 - v.w <= 1e-9 |v|^2: |v| - s <= 1e-9 |v|, and the bound along v is
+    // within that of s; the nanometre taken for rounding, and rounding in the poses.
+    const double bound = convexDistanceBelow(ca, cb, X_AB, inf);
+    EXPECT_LE(bound, s) << "trial " << trial;
+    EXPECT_GE(bound, s - 1e-8 - 1e-6 * s) << "trial " << trial;
+    EXPECT_GE(convexDistanceBelow(ca, cb, X_AB, 0.99 * s), 0.99 * s) << "trial " << trial;
+    EXPECT_LT(convexDistanceBelow(ca, cb, X_AB, 1.01 * s), 1.01 * s) << "trial " << trial;
+    // Shift b by s along the slab's normal (x in W): the sets now share a point.
+    Eigen::Isometry3d X_WB_touching = X_WB;
+    X_WB_touching.translation() -= Eigen::Vector3d(s, 0, 0);
+    EXPECT_EQ(convexDistanceBelow(ca, cb, X_WA.inverse() * X_WB_touching, inf), 0.0)
+        << "trial " << trial;
+  }
+}
+
+// The distance from p to the box |x| <= h (brute force needs no search for a box).
+double pointBoxDistance(const Eigen::Vector3d& p, const Eigen::Vector3d& h) {
+  return (p.cwiseAbs() - h).cwiseMax(0.0).norm();
+}
+
+// The distance from p to the solid cylinder of radius r and length l along z.
+double pointCylinderDistance(const Eigen::Vector3d& p, double r, double l) {
+  const double radial = std::max(0.0, p.head<2>().norm() - r);
+  const double axial = std::max(0.0, std::abs(p.z()) - l / 2);
+  return std::hypot(radial, axial);
+}
+
+// The distance between segments p0-p1 and q0-q1 (Ericson, Real-Time Collision Detection
+// §5.1.9).
+double segmentDistance(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,
+                       const Eigen::Vector3d& q0, const Eigen::Vector3d& q1) {
+  const Eigen::Vector3d d1 = p1 - p0, d2 = q1 - q0, r = p0 - q0;
+  const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
+  const double c = d1.dot(r), b = d1.dot(d2), denom = a * e - b * b;
+  double s = denom > 1e-12 ? std::clamp((b * f - c * e) / denom, 0.0, 1.0) : 0.0;
+  double t = (b * s + f) / e;
+  if (t < 0) {
+    t = 0;
+    s = std::clamp(-c / a, 0.0, 1.0);
+  } else if (t > 1) {
+    t = 1;
+    s = std::clamp((b - c) / a, 0.0, 1.0);
+  }
+  return ((p0 + d1 * s) - (q0 + d2 * t)).norm();
+}
+
+// Two disjoint convex polyhedra are closest at a vertex of one and the other's solid, or at two
+// edges: the least of those, for boxes (zero when a corner is inside the other or edges cross
+// faces: callers keep the boxes apart).
+double boxBoxDistance(const Eigen::Vector3d& ha, const Eigen::Vector3d& hb,
+                      const Eigen::Isometry3d& X_AB) {
+  std::array<Eigen::Vector3d, 8> ca, cb_A;
+  for (int k = 0; k < 8; ++k) {
+    const Eigen::Vector3d sign((k & 1) ? 1 : -1, (k & 2) ? 1 : -1, (k & 4) ? 1 : -1);
+    ca[static_cast<std::size_t>(k)] = ha.cwiseProduct(sign);
+    cb_A[static_cast<std::size_t>(k)] = X_AB * Eigen::Vector3d(hb.cwiseProduct(sign));
+  }
+  double best = std::numeric_limits<double>::infinity();
+  const Eigen::Isometry3d X_BA = X_AB.inverse();
+  for (int k = 0; k < 8; ++k) {
+    best = std::min(best, pointBoxDistance(cb_A[static_cast<std::size_t>(k)], ha));
+    best = std::min(best, pointBoxDistance(X_BA * ca[static_cast<std::size_t>(k)], hb));
+  }
+  // Edges: corners differing in one bit.
+  for (int i = 0; i < 8; ++i) {
+    for (int bi = 1; bi < 8; bi <<= 1) {
+      if (i & bi) continue;
+      for (int j = 0; j < 8; ++j) {
+        for (int bj = 1; bj < 8; bj <<= 1) {
+          if (j & bj) continue;
+          best = std::min(best, segmentDistance(ca[static_cast<std::size_t>(i)],
+                                                ca[static_cast<std::size_t>(i | bi)],
+                                                cb_A[static_cast<std::size_t>(j)],
+                                                cb_A[static_cast<std::size_t>(j | bj)]));
+        }
+      }
+    }
+  }
+  return best;
+}
+
+// The primitives' hulls against closed-form distances: a ball to a ball, a box or a cylinder,
+// and a box to a box (brute force over corners and edges). Boxes and balls are exact hulls, so
+// the bound is the distance up to GJK's tolerance; a cylinder's is an outer 32-gon prism, so the
+// bound may fall short by radius * (1 / cos(pi / 32) - 1), never more, and never exceeds it.
+TEST(ConvexDistance, PrimitiveHullsMatchClosedFormDistances) {
+  std::mt19937_64 rng(0x9e1e);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const double inf = std::numeric_limits<double>::infinity();
+  int compared = 0;
+  for (int trial = 0; trial < 3000; ++trial) {
+    const Eigen::Isometry3d X_AB = randomPose(rng, 1.5);
+    const double rb = 0.2 * unit(rng);
+    const ConvexPoints ball = ballHull(rb);
+    const Eigen::Vector3d p_A = X_AB.translation();  // the ball's centre in A
+    const Eigen::Vector3d h(0.05 + 0.4 * unit(rng), 0.05 + 0.4 * unit(rng), 0.05 + 0.4 * unit(rng));
+    // Ball to ball.
+    const double ra = 0.2 * unit(rng);
+    EXPECT_NEAR(convexDistanceBelow(ballHull(ra), ball, X_AB, inf),
+                std::max(0.0, p_A.norm() - ra - rb), 1e-8)
+        << "trial " << trial;
+    // Ball to box.
+    const double to_box = std::max(0.0, pointBoxDistance(p_A, h) - rb);
+    const double box_bound = convexDistanceBelow(boxHull(h), ball, X_AB, inf);
+    EXPECT_LE(box_bound, to_box) << "trial " << trial;
+    EXPECT_GE(box_bound, to_box - 1e-8 - 1e-6 * to_box) << "trial " << trial;
+    // Ball to cylinder.
+    const double radius = h.x(), length = 2 * h.z();
+    const double to_cylinder = std::max(0.0, pointCylinderDistance(p_A, radius, length) - rb);
+    const double cylinder_bound =
+        convexDistanceBelow(cylinderHull(radius, length), ball, X_AB, inf);
+    EXPECT_LE(cylinder_bound, to_cylinder) << "trial " << trial;
+    EXPECT_GE(cylinder_bound, to_cylinder - radius * (1 / std::cos(M_PI / 32) - 1) - 1e-8)
+        << "trial " << trial;
+    // Box to box, when apart (the brute force needs disjoint boxes).
+    const Eigen::Vector3d hb(0.05 + 0.4 * unit(rng), 0.05 + 0.4 * unit(rng),
+                             0.05 + 0.4 * unit(rng));
+    if (convexApart(boxHull(h), boxHull(hb), X_AB, 1e-6)) {
+      ++compared;
+      const double exact = boxBoxDistance(h, hb, X_AB);
+      const double bound = convexDistanceBelow(boxHull(h), boxHull(hb), X_AB, inf);
+      EXPECT_LE(bound, exact + 1e-12) << "trial " << trial;
+      EXPECT_GE(bound, exact - 1e-8 - 1e-6 * exact) << "trial " << trial;
+    }
+  }
+  EXPECT_GT(compared, 500);
+}
+
+TEST(ConvexDistance, PrimitiveHullsRefuseBadSizes) {
+  EXPECT_THROW(boxHull(Eigen::Vector3d(1, -1, 1)), InvalidArgument);
+  EXPECT_THROW(boxHull(Eigen::Vector3d(1, std::nan(""), 1)), InvalidArgument);
+  EXPECT_THROW(ballHull(-1), InvalidArgument);
+  EXPECT_THROW(cylinderHull(1, -1), InvalidArgument);
+  EXPECT_THROW(cylinderHull(1, 1, 2), InvalidArgument);
+  EXPECT_EQ(convexDistanceBelow(ConvexPoints(), ballHull(1), Eigen::Isometry3d::Identity(), 1),
+            0.0);
 }
 
 }  // namespace

@@ -26,6 +26,7 @@ ConvexPoints::ConvexPoints(const std::vector<Eigen::Vector3d>& points, double ra
     centroid_ += p;
   }
   centroid_ /= static_cast<double>(points.size());
+  for (const Eigen::Vector3d& p : points) reach_ = std::max(reach_, (p - centroid_).norm());
 }
 
 ConvexPoints::ConvexPoints(const std::vector<Eigen::Vector3d>& points,
@@ -264,6 +265,109 @@ bool convexApart(const ConvexPoints& a, const ConvexPoints& b, const Eigen::Isom
     if (!reduce(s, v) || !(v.squaredNorm() > margin * margin)) return false;
   }
   return false;
+}
+
+namespace {
+
+// The gap between a and b along v (not 0) over every point: min over a of u . a less max over
+// b of u . (X_AB b), u = v / |v|, less the radii.
+double gapOverEveryPoint(const ConvexPoints& a, const ConvexPoints& b, const Eigen::Matrix3d& R_AB,
+                         const Eigen::Vector3d& p_AB, const Eigen::Vector3d& v) {
+  const Eigen::Vector3d u = v.normalized();
+  const Eigen::Vector3d w =
+      a.point(a.supportIndex(-u)) - (R_AB * b.point(b.supportIndex(R_AB.transpose() * u)) + p_AB);
+  return u.dot(w) - a.radius() - b.radius();
+}
+
+// Far above rounding in a support value, far below any distance that matters.
+constexpr double kRounding = 1e-9;
+
+}  // namespace
+
+double convexDistanceBelow(const ConvexPoints& a, const ConvexPoints& b,
+                           const Eigen::Isometry3d& X_AB, double cap,
+                           Eigen::Vector3d* direction_A) {
+  if (a.empty() || b.empty()) return 0.0;
+  const Eigen::Matrix3d R_AB = X_AB.linear();
+  const Eigen::Matrix3d R_BA = R_AB.transpose();
+  const Eigen::Vector3d p_AB = X_AB.translation();
+  const double radii = a.radius() + b.radius();
+  Eigen::Vector3d v = a.centroid() - (R_AB * b.centroid() + p_AB);
+  if (direction_A != nullptr && direction_A->allFinite() && direction_A->squaredNorm() > 0) {
+    v = *direction_A;
+  }
+  if (!(v.squaredNorm() > 0)) v = Eigen::Vector3d::UnitX();
+  // The last non-zero direction, and the best gap found with the supports of every point and
+  // its direction.
+  Eigen::Vector3d last = v, best = v;
+  double bound = -std::numeric_limits<double>::infinity();
+  bool exact_supports = !a.hasEdges() && !b.hasEdges();
+  Simplex s;
+  for (int iteration = 0; iteration < kMaxIterations; ++iteration) {
+    last = v;
+    std::size_t ia = exact_supports ? a.supportIndex(-v) : a.climbSupport(-v);
+    std::size_t ib = exact_supports ? b.supportIndex(R_BA * v) : b.climbSupport(R_BA * v);
+    Eigen::Vector3d w = a.point(ia) - (R_AB * b.point(ib) + p_AB);
+    double vw = v.dot(w);
+    const double len = v.norm();
+    if (vw / len - radii >= cap && !exact_supports) {
+      // A climb may stop short of the support: from here on every point is searched.
+      exact_supports = true;
+      ia = a.supportIndex(-v);
+      ib = b.supportIndex(R_BA * v);
+      w = a.point(ia) - (R_AB * b.point(ib) + p_AB);
+      vw = v.dot(w);
+    }
+    if (exact_supports && vw / len - radii - kRounding > bound) {
+      bound = vw / len - radii - kRounding;
+      best = v;
+    }
+    if (bound >= cap) break;
+    // No progress left (the distance found) or a full simplex: stop.
+    if (len * len - vw <= 1e-9 * len * len || s.n == 4) break;
+    s.p[static_cast<std::size_t>(s.n++)] = w;
+    // The origin inside the simplex (the hulls overlap) or a degenerate simplex: stop.
+    if (!reduce(s, v) || !(v.squaredNorm() > 0)) break;
+  }
+  if (!exact_supports) {
+    bound = gapOverEveryPoint(a, b, R_AB, p_AB, last) - kRounding;
+    best = last;
+  }
+  if (direction_A != nullptr) *direction_A = best;
+  return std::max(0.0, bound);
+}
+
+ConvexPoints boxHull(const Eigen::Vector3d& half_extents) {
+  if (!half_extents.allFinite() || !(half_extents.minCoeff() >= 0)) {
+    throw InvalidArgument("boxHull: the half extents must be finite and >= 0");
+  }
+  std::vector<Eigen::Vector3d> corners;
+  for (int corner = 0; corner < 8; ++corner) {
+    const Eigen::Vector3d sign((corner & 1) ? 1 : -1, (corner & 2) ? 1 : -1, (corner & 4) ? 1 : -1);
+    corners.push_back(half_extents.cwiseProduct(sign));
+  }
+  return ConvexPoints(corners);
+}
+
+ConvexPoints ballHull(double radius) {
+  return ConvexPoints({Eigen::Vector3d::Zero()}, radius);
+}
+
+ConvexPoints cylinderHull(double radius, double length, int sides) {
+  if (!(radius >= 0) || !(length >= 0) || !std::isfinite(radius) || !std::isfinite(length)) {
+    throw InvalidArgument("cylinderHull: the radius and length must be finite and >= 0");
+  }
+  if (sides < 3) throw InvalidArgument("cylinderHull: fewer than 3 sides");
+  // A regular polygon whose edges touch the circle: its corners at radius / cos(pi / sides).
+  const double corner = radius / std::cos(M_PI / sides);
+  std::vector<Eigen::Vector3d> points;
+  for (int k = 0; k < sides; ++k) {
+    const double angle = 2 * M_PI * k / sides;
+    for (double z : {-length / 2, length / 2}) {
+      points.emplace_back(corner * std::cos(angle), corner * std::sin(angle), z);
+    }
+  }
+  return ConvexPoints(points);
 }
 
 }  // namespace octomotion

@@ -121,6 +121,7 @@ RefineData::RefineData(const RobotModel& model, const EnvironmentGeometry& envir
       add(fcl_internal::shapeOf(item.spec.primitive), item.spec.X_WO);
       object.primitive = item.spec.primitive;
       object.X_OW = item.spec.X_WO.inverse();
+      object.hull_O = primitiveHull(item.spec.primitive);
       has_primitives = true;
     } else if (item.spec.kind == EnvironmentObject::Kind::kMesh) {
       add(fcl_internal::meshOf(item.mesh), item.spec.X_WO);

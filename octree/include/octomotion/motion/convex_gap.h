@@ -4,7 +4,8 @@
 // on the two support values computed for that direction over every point, so a plane between
 // the sets is proven whatever the iteration did. Used by exact refine mode to clear a robot
 // link pair before any voxel or mesh test: two meshes whose vertex hulls are apart cannot share
-// a triangle contact.
+// a triangle contact. The same certificate bounds their distance from below
+// (convexDistanceBelow), with hulls of the scene's primitives (boxHull, ballHull, cylinderHull).
 #pragma once
 
 #include <array>
@@ -41,6 +42,9 @@ class ConvexPoints {
   std::size_t climbSupport(const Eigen::Vector3d& d) const;
   bool hasEdges() const { return !neighbours_.empty(); }
   const Eigen::Vector3d& centroid() const { return centroid_; }
+  // The largest distance from the centroid to a point: the grown hull lies in the ball of
+  // radius reach() + radius() around the centroid.
+  double reach() const { return reach_; }
 
  private:
   std::vector<double> x_, y_, z_;  // split by coordinate: the support loop vectorises
@@ -52,6 +56,7 @@ class ConvexPoints {
   std::size_t climbStart(const Eigen::Vector3d& d) const;
   double radius_ = 0;
   Eigen::Vector3d centroid_ = Eigen::Vector3d::Zero();
+  double reach_ = 0;
 };
 
 // True only when a plane leaves `a` and `b` (b placed in a's frame by X_AB) more than `gap`
@@ -62,5 +67,26 @@ class ConvexPoints {
 // separating one on success.
 bool convexApart(const ConvexPoints& a, const ConvexPoints& b, const Eigen::Isometry3d& X_AB,
                  double gap, Eigen::Vector3d* direction_A = nullptr);
+
+// A certified lower bound (>= 0) on the distance between `a` and `b` (b placed in a's frame by
+// X_AB): the width of the slab between them along the best of GJK's directions, taken over
+// every point of both sets, less their radii and a nanometre for rounding. GJK only proposes the
+// direction, so a wrong or unfinished run makes the bound smaller, never too large. 0 when they
+// overlap. GJK stops early once the bound reaches `cap`; otherwise it runs until the distance is
+// found to about 1e-9 relative, so for convex sets the bound is their distance up to that.
+// `direction_A` as in convexApart: it starts the search and receives the bound's direction.
+double convexDistanceBelow(const ConvexPoints& a, const ConvexPoints& b,
+                           const Eigen::Isometry3d& X_AB, double cap,
+                           Eigen::Vector3d* direction_A = nullptr);
+
+// The points of exact or outer hulls of primitive solids, in the solid's frame (centred, a
+// cylinder along z), for convexDistanceBelow: a distance to them never exceeds the distance to
+// the solid. A box: its 8 corners (exact). A ball: its centre grown by the radius (exact). A
+// cylinder: two regular `sides`-gons circumscribing its end discs (an outer hull, wider than the
+// cylinder by at most radius * (1 / cos(pi / sides) - 1)). Throw InvalidArgument for a
+// non-finite or negative size, or fewer than 3 sides.
+ConvexPoints boxHull(const Eigen::Vector3d& half_extents);
+ConvexPoints ballHull(double radius);
+ConvexPoints cylinderHull(double radius, double length, int sides = 32);
 
 }  // namespace octomotion

@@ -32,6 +32,9 @@ struct RefineObject {
   // In W, a convex set holding the object's solid (objectHull); empty for voxel objects. A
   // link whose hull is apart from it is free of it for FCL (refineLinkHits).
   ConvexPoints hull_W;
+  // A primitive's exact or outer hull in O (primitiveHull); empty for other objects, whose hull
+  // may hold points far from them (a concave mesh around a link).
+  ConvexPoints hull_O;
 };
 
 // A convex set holding `spec`'s solid in W: a box's corners, a ball's centre grown by its radius,
@@ -100,6 +103,11 @@ struct RefineScratch {
   std::vector<Eigen::Vector3d> pair_directions;
   std::vector<char> object_apart;  // refineLinkHits' per-object hull verdicts
   RefineCounts counts;
+  // Distances for the certified motion validator (refine_clearance.cpp): link-object and
+  // link-link distances answered by their hulls' bound, and FCL distance calls (one per element
+  // and shape pair) for the others.
+  std::uint64_t hull_distances = 0;
+  std::uint64_t fcl_distances = 0;
 };
 
 // The thread's refine scratch for a new query at the link poses in `robot` (FK done), made on
@@ -143,6 +151,9 @@ std::vector<ClosedLinkMesh> closedLinkMeshes(
 // inside the other's every face plane (so inside its solid) while another lies kCertainDepth
 // outside its hull, so their surfaces cross and FCL's mesh test reports a contact.
 bool certainPairContact(const RefineData& data, const RobotData& robot, int link_a, int link_b);
+// The hull in its frame of a box, ball or cylinder (convex_gap.h): a distance to it is at most
+// the distance to the solid.
+ConvexPoints primitiveHull(const Primitive& shape);
 // FCL's exact distance from the robot's elements to the objects (0 in contact).
 double refineEnvironmentDistance(const RefineData& data, RefineScratch& r, const RobotData& robot);
 

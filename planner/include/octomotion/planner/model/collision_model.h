@@ -412,9 +412,12 @@ class OctreeCollisionModel {
   RefineMode refine() const { return options_.refine; }
   // RefineMode::kExact, for the certified motion validator (refine_clearance.cpp): each link l
   // with caps[l] > 0 whose per_link[l] (a lower bound, e.g. clearanceLowerBoundGridPerLink's)
-  // is below caps[l] and below two voxels gets FCL's exact distance from its geometry to the
-  // environment's objects, or caps[l] when that is at least caps[l]. And the exact distance between
-  // two links' geometry, or `cap` when at least `cap`. Without kExact: per_link unchanged, and 0.
+  // is below caps[l] and below two voxels gets a tighter lower bound on the distance from its
+  // geometry to the environment's objects, or caps[l] when that is at least caps[l]: per object,
+  // the distance between convex hulls holding both (boxes, balls, cylinders; docs/validation.md
+  // §7), or FCL's exact distance where that hull bound is within an eighth of a voxel of contact
+  // or the object is not a primitive. And the same between two links' geometry, or `cap` when at
+  // least `cap`. Without kExact: per_link unchanged, and 0.
   void refineClearancesPerLink(const CheckScratch& scratch, const double* caps,
                                double* per_link) const;
   double refinedPairDistance(const CheckScratch& scratch, int link_a, int link_b, double cap) const;
