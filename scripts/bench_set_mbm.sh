@@ -6,6 +6,7 @@
 #   scripts/bench_set_mbm.sh BUILD OUT
 # scripts/write_benchmarks.sh bench_set_mbm calls it and stamps the section. Environment:
 # OCTOMOTION_BENCH_SET_LIMIT=N plans only the first N problems of each set (default: all);
+# OCTOMOTION_BENCH_SET_CHECKERS=LIST the checkers (default: octree-fused,fcl);
 # OCTOMOTION_BENCH_SET_DATA=DIR the data folder (default: ../shared/data beside the repository).
 # The CSV and the OMPL logs stay in BUILD/bench-set-mbm.
 set -euo pipefail
@@ -18,7 +19,7 @@ source "$root/scripts/mbm_extract.sh"
 limit=()
 [[ -n ${OCTOMOTION_BENCH_SET_LIMIT:-} ]] && limit=(--limit "$OCTOMOTION_BENCH_SET_LIMIT")
 results=$build/bench-set-mbm
-args=(--checkers "octree-fused,fcl" --planner RRTConnect --time 1 --seed 1 "${limit[@]}"
+args=(--checkers "${OCTOMOTION_BENCH_SET_CHECKERS:-octree-fused,fcl}" --planner RRTConnect --time 1 --seed 1 "${limit[@]}"
   --robot "$data/panda/panda.urdf" --srdf "$data/panda/panda.srdf")
 cmake --build "$build" --target octomotion >/dev/null
 "$build/planner/octomotion" bench-set "$tmp/problems" "${args[@]}" --out-dir "$results" \
