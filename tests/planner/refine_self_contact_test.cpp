@@ -11,10 +11,10 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <random>
 #include <string>
 #include <vector>
 
+#include "joint_states.h"
 #include "octomotion/planner/model/collision_model.h"
 #include "octomotion/planner/reference/fcl_collision_model.h"
 #include "octomotion/planner/scene/environment_geometry.h"
@@ -35,13 +35,9 @@ TEST(RefineSelfContact, EveryCertainSelfContactIsAnFclContact) {
   const FclCollisionModel fcl(robot, none);
   auto exact = fcl.makeScratch();
   CheckScratch scratch = model.makeScratch();
-  std::mt19937_64 rng(0x5e1f);
-  std::size_t certain_states = 0, fcl_contacts = 0, wrong = 0, disagreements = 0;
-  for (int state = 0; state < 3000; ++state) {
-    std::vector<double> q;
-    for (const Variable& v : robot.variables()) {
-      q.push_back(std::uniform_real_distribution<double>(v.lower, v.upper)(rng));
-    }
+  std::size_t certain_states = 0, fcl_contacts = 0, wrong = 0, disagreements = 0, state = 0;
+  for (const std::vector<double>& q : test::uniformJointStates(robot, 3000, 0x5e1f)) {
+    ++state;
     fcl.setConfiguration(q.data(), q.size(), Eigen::Isometry3d::Identity(), *exact);
     const bool truth = fcl.selfInCollision(*exact);
     fcl_contacts += truth;
@@ -51,7 +47,7 @@ TEST(RefineSelfContact, EveryCertainSelfContactIsAnFclContact) {
     const bool certain = model.refineCounts(scratch).certain_self_contacts > before;
     certain_states += certain;
     if (certain && !truth) {
-      ADD_FAILURE() << "certain self contact FCL does not find, state " << state;
+      ADD_FAILURE() << "certain self contact FCL does not find, state " << state - 1;
       ++wrong;
     }
     disagreements += hit != truth;
@@ -85,13 +81,8 @@ TEST(RefineSelfContact, LinksClearedByObjectHullsAreFreeForFcl) {
   const FclCollisionModel fcl(robot, environment);
   auto exact = fcl.makeScratch();
   CheckScratch scratch = model.makeScratch();
-  std::mt19937_64 rng(0x0b1e);
   std::size_t contacts = 0, disagreements = 0;
-  for (int state = 0; state < 3000; ++state) {
-    std::vector<double> q;
-    for (const Variable& v : robot.variables()) {
-      q.push_back(std::uniform_real_distribution<double>(v.lower, v.upper)(rng));
-    }
+  for (const std::vector<double>& q : test::uniformJointStates(robot, 3000, 0x0b1e)) {
     fcl.setConfiguration(q.data(), q.size(), Eigen::Isometry3d::Identity(), *exact);
     const bool truth = fcl.environmentInCollision(*exact);
     contacts += truth;
