@@ -69,24 +69,34 @@ TEST(ConvexGap, EveryApartAnswerHasASeparatingDirection) {
   EXPECT_GT(not_apart, 100);
 }
 
-TEST(ConvexGap, SetsOnTwoSidesOfASlabAreApart) {
-  std::mt19937_64 rng(0x51ab);
+// Two random point sets, in their own frames A and B, on the two sides of a slab of random width
+// s: in a world frame W, a in x <= -s/2 and b in x >= s/2, one point of each on the slab's faces
+// at the same y and z, so their distance is exactly s.
+struct SlabPair {
+  double s;
+  std::vector<Eigen::Vector3d> a, b;
+  Eigen::Isometry3d X_WA, X_WB, X_AB;
+};
+SlabPair slabPair(std::mt19937_64& rng) {
   std::uniform_int_distribution<int> count(1, 200);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const double s = 1e-4 + 0.3 * unit(rng);
+  auto a_W = randomCloud(rng, count(rng), 0.5), b_W = randomCloud(rng, count(rng), 0.5);
+  for (auto& p : a_W) p.x() = -s / 2 - (p.x() + 0.5);
+  for (auto& p : b_W) p.x() = s / 2 + (p.x() + 0.5);
+  a_W[0] = Eigen::Vector3d(-s / 2, 0, 0);
+  b_W[0] = Eigen::Vector3d(s / 2, 0, 0);
+  const Eigen::Isometry3d X_WA = randomPose(rng, 1.0), X_WB = randomPose(rng, 1.0);
+  SlabPair pair{s, {}, {}, X_WA, X_WB, X_WA.inverse() * X_WB};
+  for (const auto& p : a_W) pair.a.push_back(X_WA.inverse() * p);
+  for (const auto& p : b_W) pair.b.push_back(X_WB.inverse() * p);
+  return pair;
+}
+
+TEST(ConvexGap, SetsOnTwoSidesOfASlabAreApart) {
+  std::mt19937_64 rng(0x51ab);
   for (int trial = 0; trial < 2000; ++trial) {
-    // In a world frame W: a in x <= -s/2, b in x >= s/2, the slab between them s wide.
-    const double s = 1e-4 + 0.3 * unit(rng);
-    auto a_W = randomCloud(rng, count(rng), 0.5), b_W = randomCloud(rng, count(rng), 0.5);
-    for (auto& p : a_W) p.x() = -s / 2 - (p.x() + 0.5);
-    for (auto& p : b_W) p.x() = s / 2 + (p.x() + 0.5);
-    // One point of each on the slab's faces, at the same y and z: the distance is exactly s.
-    a_W[0] = Eigen::Vector3d(-s / 2, 0, 0);
-    b_W[0] = Eigen::Vector3d(s / 2, 0, 0);
-    const Eigen::Isometry3d X_WA = randomPose(rng, 1.0), X_WB = randomPose(rng, 1.0);
-    std::vector<Eigen::Vector3d> a, b;
-    for (const auto& p : a_W) a.push_back(X_WA.inverse() * p);
-    for (const auto& p : b_W) b.push_back(X_WB.inverse() * p);
-    const Eigen::Isometry3d X_AB = X_WA.inverse() * X_WB;
+    const auto [s, a, b, X_WA, X_WB, X_AB] = slabPair(rng);
     const ConvexPoints ca(a), cb(b);
     EXPECT_TRUE(convexApart(ca, cb, X_AB, 0.99 * s)) << "trial " << trial << " slab " << s;
     EXPECT_FALSE(convexApart(ca, cb, X_AB, 1.01 * s)) << "trial " << trial << " slab " << s;
@@ -270,20 +280,8 @@ TEST(ConvexDistance, EveryBoundHasItsSlabAndStaysBelowEveryPointPair) {
 // stays below a cap above it; sets sharing a point get 0.
 TEST(ConvexDistance, FindsTheDistanceOfSetsAcrossASlab) {
   std::mt19937_64 rng(0xd51a);
-  std::uniform_int_distribution<int> count(1, 200);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
   for (int trial = 0; trial < 2000; ++trial) {
-    const double s = 1e-4 + 0.3 * unit(rng);
-    auto a_W = randomCloud(rng, count(rng), 0.5), b_W = randomCloud(rng, count(rng), 0.5);
-    for (auto& p : a_W) p.x() = -s / 2 - (p.x() + 0.5);
-    for (auto& p : b_W) p.x() = s / 2 + (p.x() + 0.5);
-    a_W[0] = Eigen::Vector3d(-s / 2, 0, 0);
-    b_W[0] = Eigen::Vector3d(s / 2, 0, 0);
-    const Eigen::Isometry3d X_WA = randomPose(rng, 1.0), X_WB = randomPose(rng, 1.0);
-    std::vector<Eigen::Vector3d> a, b;
-    for (const auto& p : a_W) a.push_back(X_WA.inverse() * p);
-    for (const auto& p : b_W) b.push_back(X_WB.inverse() * p);
-    const Eigen::Isometry3d X_AB = X_WA.inverse() * X_WB;
+    const auto [s, a, b, X_WA, X_WB, X_AB] = slabPair(rng);
     const ConvexPoints ca(a), cb(b);
     const double inf = std::numeric_limits<double>::infinity();
     // GJK stops when |v|^2 - v.w <= 1e-9 |v|^2: |v| - s <= 1e-9 |v|, and the bound along v is
