@@ -12,8 +12,10 @@
 // SETTINGS picks rows (digits 0-3, e.g. 01 for a quick profile without the self-pair tables'
 // build); LINK_RATIO, when given, sets the refined rows' link trees to RESOLUTION x LINK_RATIO
 // (and their self trees with them), to choose that resolution by measurement.
+// SCENE files, when given, are measured after the MotionBenchMaker scenes (SETS 0: instead of
+// them): scene YAML files such as robots/scenes/*.yaml, each with its own robot.
 // Usage: build/bench/planner_refine_bench [STATES] [SETS] [RESOLUTION] [SETTINGS] [LINK_RATIO]
-//        (default 5000 4 0.01 0123, the library's link trees)
+//        [SCENE ...]   (default 5000 4 0.01 0123, the library's link trees)
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -23,6 +25,8 @@
 #include <fstream>
 #include <limits>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <ompl/util/Console.h>
 
@@ -59,29 +63,40 @@ int run(int argc, char** argv) {
   const double resolution = argc > 3 ? std::atof(argv[3]) : 0.01;
   const std::string settings = argc > 4 ? argv[4] : "0123";
   const double exact_link_ratio = argc > 5 ? std::atof(argv[5]) : 0;
-  if (count < 1 || sets < 1 || !(resolution > 0)) {
-    throw InvalidArgument("STATES and SETS must be >= 1, RESOLUTION > 0");
+  if (count < 1 || sets < 0 || !(resolution > 0)) {
+    throw InvalidArgument("STATES must be >= 1, SETS >= 0, RESOLUTION > 0");
   }
-  const test::MbmProblems problems;
-  const std::string panda = test::MbmProblems::panda();
-  if (problems.problems().empty() || !std::filesystem::exists(panda + "/panda.urdf")) {
-    throw InvalidArgument("no MotionBenchMaker problems or Panda under ../shared/data");
+  // (name, scene file): the first problem of each MotionBenchMaker set, then the SCENE files.
+  std::vector<std::pair<std::string, std::string>> scenes;
+  if (sets > 0) {
+    const test::MbmProblems problems;
+    const std::string panda = test::MbmProblems::panda();
+    if (problems.problems().empty() || !std::filesystem::exists(panda + "/panda.urdf")) {
+      throw InvalidArgument("no MotionBenchMaker problems or Panda under ../shared/data");
+    }
+    std::vector<test::MbmProblem> first = problems.firstOfEachSet();
+    first.resize(std::min<std::size_t>(first.size(), static_cast<std::size_t>(sets)));
+    for (const test::MbmProblem& p : first) {
+      const std::string scene_path = problems.folder() + "/" + p.set + "_bench.yaml";
+      std::ofstream(scene_path) << "robot: {urdf: " << panda << "/panda.urdf, srdf: " << panda
+                                << "/panda.srdf}\nenvironment:\n  - moveit_scene: " << p.scene
+                                << "\nproblem: {moveit_request: " << p.request << "}\n";
+      scenes.emplace_back(p.set, scene_path);
+    }
+  }
+  for (int i = 6; i < argc; ++i) {
+    scenes.emplace_back(std::filesystem::path(argv[i]).stem().string(), argv[i]);
   }
   ompl::msg::setLogLevel(ompl::msg::LOG_ERROR);
-  std::vector<test::MbmProblem> first = problems.firstOfEachSet();
-  first.resize(std::min<std::size_t>(first.size(), static_cast<std::size_t>(sets)));
-  std::printf("Panda (7 planned joints) at %g m, %d uniform states per scene; mean check time\n",
-              resolution, count);
-  for (const test::MbmProblem& p : first) {
-    const std::string scene_path = problems.folder() + "/" + p.set + "_bench.yaml";
-    std::ofstream(scene_path) << "robot: {urdf: " << panda << "/panda.urdf, srdf: " << panda
-                              << "/panda.srdf}\nenvironment:\n  - moveit_scene: " << p.scene
-                              << "\nproblem: {moveit_request: " << p.request << "}\n";
+  std::printf("%s at %g m, %d uniform states per scene; mean check time\n",
+              sets > 0 ? "Panda (7 planned joints)" : "Each scene's robot", resolution, count);
+  for (const auto& [name, scene_path] : scenes) {
     SceneOverrides overrides;
     overrides.resolution = resolution;
     overrides.require_free_start_goal = false;
     const PlanningScene scene = loadPlanningScene(scene_path, overrides, [](const std::string&) {});
     const RobotModel& robot = scene.model->robot();
+    if (robot.isFreeFlying()) throw InvalidArgument(scene_path + ": not a fixed-base arm");
     const auto states = test::uniformJointStates(robot, count, 7);
     const auto fcl = scene.fclModel();
     auto exact = fcl->makeScratch();
@@ -99,7 +114,7 @@ int run(int argc, char** argv) {
     int free_states = 0;
     for (const char t : truth) free_states += !t;
     const double fcl_mean = 1e6 * fcl_seconds / count;
-    std::printf("%s: %.1f %% of the states free for FCL\n", p.set.c_str(),
+    std::printf("%s: %.1f %% of the states free for FCL\n", name.c_str(),
                 100.0 * free_states / count);
     std::printf("  %-22s mean %8.3f us\n", "fcl", fcl_mean);
     // The library's default trees, then refined; then refined with the self pairs' trees at the

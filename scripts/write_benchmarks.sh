@@ -28,7 +28,7 @@ gbench="--benchmark_repetitions=5 --benchmark_report_aggregates_only=true"
 states=${OCTOMOTION_DIFFERENTIAL_STATES:-1000000}
 # section -> title | bench target | arguments (relative to the repository root)
 declare -A title target args
-add() { title[$1]=$2; target[$1]=$3; args[$1]=$4; }
+add() { title[$1]=$2; target[$1]=$3; args[$1]=$(printf "%s" "$4" | tr -s " \n" " "); }
 add differential "Randomised differential validation against FCL (docs/validation.md §6)" \
   validation_differential_bench "--states $states --per-case 4000 --seed 1"
 add motion "Moving trees and the fused query (motion_bench)" motion_bench "$gbench"
@@ -54,14 +54,18 @@ add validity_checker "The OMPL validity checker per scene and checker (planner_v
 add broadphase "N-objects octree broad phase (broadphase_bench)" broadphase_bench ""
 add world_updates "A world that changes between plans, the Panda at 1 cm (planner_world_updates_bench)" \
   planner_world_updates_bench "$gbench"
-add refine "Exact refine mode, the Panda in MotionBenchMaker scenes at 1 cm (planner_refine_bench)" \
-  planner_refine_bench "5000 4 0.01"
+add refine "Exact refine mode, the Panda in MotionBenchMaker scenes and the arm scenes at 1 cm (planner_refine_bench)" \
+  planner_refine_bench "5000 4 0.01 0123 0 robots/scenes/bookshelf.yaml robots/scenes/cage.yaml
+  robots/scenes/cluttered_table.yaml"
 add hull_distance "Hull distance bounds against FCL's distance, Panda self pairs (planner_hull_distance_bench)" \
   planner_hull_distance_bench "$gbench"
 add motion_validator "Motion validators on the Panda MotionBenchMaker problems (planner_motion_validator_bench)" \
   planner_motion_validator_bench "--benchmark_repetitions=3 --benchmark_report_aggregates_only=true"
-add tradeoff "Speed/accuracy trade study (tradeoff_bench; docs/trade-off.md)" tradeoff_bench \
-  "--out-dir $build/tradeoff-results"
+# The arm scenes, with exact refine as its own rows; the section is the study's results.md.
+add tradeoff "Speed/accuracy trade study, the arm scenes (tradeoff_bench; docs/trade-off.md)" \
+  tradeoff_bench "--only bookshelf,cage,cluttered_table --states 5000 --move-tree-states 200
+  --resolutions 0.02,0.01,0.005 --refine-exact --no-fcl-octomap --runs 10 --planners RRTConnect:1
+  --out-dir $build/tradeoff-results"
 add bench_set_mbm "Planning on the MotionBenchMaker Panda problems (octomotion bench-set)" \
   octomotion ""
 add bench_set_rigid "Planning rigid bodies, a generated building included (octomotion bench-set)" \
@@ -126,7 +130,9 @@ for s in "${selected[@]}"; do
     echo
     echo "$stamp Command: \`$shown ${args[$s]//$build/build}\`"
     echo
-    if [[ $s == differential ]]; then
+    if [[ $s == tradeoff ]]; then  # its tables are in the results file, its output is progress
+      sed 's/^### /### Scene: /' "$build/tradeoff-results/results.md"
+    elif [[ $s == differential ]]; then
       echo "Per checker path: FCL's contacts; the octree's missed contacts (none allowed with"
       echo "conservative rounding); the free states it rejects, their FCL distance as a fraction of"
       echo "the path's margin (none allowed above 1), and those where one solid lies inside another."

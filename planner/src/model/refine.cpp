@@ -85,7 +85,8 @@ std::vector<Eigen::Vector3d> witnessesOf(const fcl::CollisionGeometryd& geometry
   return {};
 }
 
-// p_O lies at least kCertainDepth inside the primitive.
+}  // namespace
+
 bool deepInside(const Primitive& shape, const Eigen::Vector3d& p_O) {
   if (const auto* b = std::get_if<Box>(&shape)) {
     return (p_O.cwiseAbs() - b->half_extents).maxCoeff() <= -kCertainDepth;
@@ -99,8 +100,6 @@ bool deepInside(const Primitive& shape, const Eigen::Vector3d& p_O) {
   return r > 0 && std::abs(p_O.z()) <= c.length / 2 - kCertainDepth &&
          p_O.head<2>().squaredNorm() <= r * r;
 }
-
-}  // namespace
 
 RefineData::RefineData(const RobotModel& model, const EnvironmentGeometry& environment,
                        const WorldGrid& grid, const CollisionModelOptions& options)
@@ -122,6 +121,7 @@ RefineData::RefineData(const RobotModel& model, const EnvironmentGeometry& envir
       object.primitive = item.spec.primitive;
       object.X_OW = item.spec.X_WO.inverse();
       object.hull_O = primitiveHull(item.spec.primitive);
+      object.deep_O = deepPoints(item.spec.primitive);
       has_primitives = true;
     } else if (item.spec.kind == EnvironmentObject::Kind::kMesh) {
       add(fcl_internal::meshOf(item.mesh), item.spec.X_WO);
@@ -154,7 +154,7 @@ RefineData::RefineData(const RobotModel& model, const EnvironmentGeometry& envir
                                                        ? Eigen::Vector3d::Zero()
                                                        : Eigen::Vector3d(box_L.sizes() / 2));
   }
-  closed_links_L = closedLinkMeshes(*robot, model, link_elements);
+  self_elements = selfContactElements(*robot, model, link_elements);
 }
 
 RefineScratch& refineScratch(const RefineData& data, const RobotModel& model, std::uint64_t owner,
@@ -185,13 +185,19 @@ bool certainLinkContact(const RefineData& data, RefineScratch& r, const RobotDat
   refinePoseLink(data, r, robot, link);
   for (std::size_t e : data.link_elements[static_cast<std::size_t>(link)]) {
     const std::vector<Eigen::Vector3d>& witnesses = data.element_witnesses_E[e];
-    if (witnesses.empty()) continue;
+    const ClosedLinkMesh& closed = data.self_elements[e].mesh;
+    if (witnesses.empty() && closed.empty()) continue;
     const fcl::CollisionObjectd& element = r.fcl.objects[e];
     for (const RefineObject& object : data.objects) {
       if (!object.primitive || !object.box_W.overlap(element.getAABB())) continue;
       const Eigen::Isometry3d X_OE = object.X_OW * element.getTransform();
       for (const Eigen::Vector3d& p_E : witnesses) {
         if (deepInside(*object.primitive, X_OE * p_E)) return true;
+      }
+      // A thin bar or board through the link holds none of its vertices, but crosses its mesh.
+      if (!closed.empty() &&
+          closedMeshCrossesPrimitive(closed, object.deep_O, object.X_OW * robot.linkPose(link))) {
+        return true;
       }
     }
   }

@@ -1,9 +1,10 @@
-// RefineMode::kExact's certain self contacts (internal/refine.h): a checked pair of links, each
-// one closed mesh, is in contact for FCL when a vertex of one lies kCertainDepth inside
-// the other and another of its vertices kCertainDepth outside. The first link's surface is
+// RefineMode::kExact's certain self contacts (internal/refine.h), element by element as FCL
+// tests them. Two closed meshes are in contact for FCL when a vertex of one lies kCertainDepth
+// inside the other and another of its vertices kCertainDepth outside: the first's surface is
 // connected and has points on both sides of the second's, so the two surfaces cross, and FCL's
-// mesh test (triangle against triangle) reports the crossing. Such a pair needs neither its
-// voxels nor FCL, and the check stops there.
+// mesh test (triangle against triangle) reports the crossing. A primitive is a solid for FCL:
+// a mesh vertex (on a triangle FCL tests) or another primitive's centre kCertainDepth inside it
+// is a contact. Such a pair needs neither its voxels nor FCL, and the check stops there.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -11,6 +12,7 @@
 #include <limits>
 #include <map>
 #include <numeric>
+#include <optional>
 #include <utility>
 
 #include <fcl/geometry/bvh/BVH_model.h>
@@ -142,44 +144,174 @@ bool crosses(const ClosedLinkMesh& mover, const ClosedLinkMesh& other,
          deepOutsideHull(other, X_OM * mover.vertices_L[farthest]);
 }
 
+// The primitive's solid shrunk by kCertainDepth (its points at least that deep), or nothing when
+// it is thinner.
+std::optional<Primitive> deepCore(const Primitive& shape) {
+  if (const auto* box = std::get_if<Box>(&shape)) {
+    const Eigen::Vector3d half = box->half_extents.array() - kCertainDepth;
+    if (!(half.minCoeff() > 0)) return std::nullopt;
+    return Box{half};
+  }
+  if (const auto* ball = std::get_if<Sphere>(&shape)) {
+    if (!(ball->radius > kCertainDepth)) return std::nullopt;
+    return Sphere{ball->radius - kCertainDepth};
+  }
+  const auto& c = std::get<Cylinder>(shape);
+  if (!(c.radius > kCertainDepth && c.length > 2 * kCertainDepth)) return std::nullopt;
+  return Cylinder{c.radius - kCertainDepth, c.length - 2 * kCertainDepth};
+}
+
+// The point of the primitive's solid nearest p_P (both in its frame P).
+Eigen::Vector3d closestPoint(const Primitive& shape, const Eigen::Vector3d& p_P) {
+  if (const auto* box = std::get_if<Box>(&shape)) {
+    return p_P.cwiseMax(-box->half_extents).cwiseMin(box->half_extents);
+  }
+  if (const auto* ball = std::get_if<Sphere>(&shape)) {
+    const double norm = p_P.norm();
+    return norm > ball->radius ? Eigen::Vector3d(p_P * (ball->radius / norm)) : p_P;
+  }
+  const auto& c = std::get<Cylinder>(shape);
+  Eigen::Vector3d q = p_P;
+  q.z() = std::clamp(q.z(), -c.length / 2, c.length / 2);
+  const double radial = q.head<2>().norm();
+  if (radial > c.radius) q.head<2>() *= c.radius / radial;
+  return q;
+}
+
 }  // namespace
 
-std::vector<ClosedLinkMesh> closedLinkMeshes(
+DeepPoints deepPoints(const Primitive& shape) {
+  DeepPoints out;
+  out.core = deepCore(shape);
+  if (!out.core) return out;
+  std::vector<Eigen::Vector3d>& points = out.points;
+  points.push_back(Eigen::Vector3d::Zero());
+  if (const auto* box = std::get_if<Box>(&*out.core)) {
+    for (int corner = 0; corner < 8; ++corner) {
+      const Eigen::Vector3d sign((corner & 1) ? 1 : -1, (corner & 2) ? 1 : -1,
+                                 (corner & 4) ? 1 : -1);
+      points.push_back(box->half_extents.cwiseProduct(sign));
+    }
+  } else if (const auto* ball = std::get_if<Sphere>(&*out.core)) {
+    for (int axis = 0; axis < 3; ++axis) {
+      points.push_back(ball->radius * Eigen::Vector3d::Unit(axis));
+      points.push_back(-ball->radius * Eigen::Vector3d::Unit(axis));
+    }
+  } else {
+    const auto& c = std::get<Cylinder>(*out.core);
+    for (int k = 0; k < 8; ++k) {
+      const double angle = k * M_PI / 4;
+      for (const double z : {-c.length / 2, c.length / 2}) {
+        points.emplace_back(c.radius * std::cos(angle), c.radius * std::sin(angle), z);
+      }
+    }
+  }
+  return out;
+}
+
+bool closedMeshCrossesPrimitive(const ClosedLinkMesh& mesh, const DeepPoints& deep,
+                                const Eigen::Isometry3d& X_PM) {
+  if (!deep.core) return false;
+  const Eigen::Isometry3d X_MP = X_PM.inverse();
+  const Eigen::Vector3d q_M = X_MP * closestPoint(*deep.core, X_PM * mesh.centroid_L);
+  if (!deepInsidePlanes(mesh.planes_L, q_M)) return false;
+  for (const Eigen::Vector3d& p_P : deep.points) {
+    if (deepOutsideHull(mesh, X_MP * p_P)) return true;
+  }
+  return false;
+}
+
+std::vector<SelfContactElement> selfContactElements(
     const fcl_internal::RobotGeometry& robot, const RobotModel& model,
     const std::vector<std::vector<std::size_t>>& link_elements) {
   fcl_internal::RobotScratch prototypes;
   robot.initScratch(model, prototypes);
-  std::vector<ClosedLinkMesh> meshes(link_elements.size());
+  std::vector<SelfContactElement> elements(robot.elementCount());
   for (std::size_t l = 0; l < link_elements.size(); ++l) {
     const std::vector<CollisionElement>& collision = model.link(static_cast<int>(l)).collision;
-    // RobotGeometry makes one element per collision element, in order; one mesh only.
-    if (link_elements[l].size() != 1 || collision.size() != 1) continue;
-    const IndexedMesh mesh = indexedMesh(
-        *prototypes.objects[link_elements[l][0]].collisionGeometry(), collision[0].X_LE);
-    if (mesh.vertices_L.size() < 4 || !closedAndConnected(mesh)) continue;
-    ClosedLinkMesh& out = meshes[l];
-    out.planes_L = outwardPlanes(mesh);
-    if (out.planes_L.empty()) continue;
-    out.vertices_L = mesh.vertices_L;
-    for (const Eigen::Vector3d& v : mesh.vertices_L) out.centroid_L += v;
-    out.centroid_L /= static_cast<double>(mesh.vertices_L.size());
-    for (const Eigen::Vector4d& plane : out.planes_L) {
-      double support = -std::numeric_limits<double>::infinity();
-      for (const Eigen::Vector3d& v : mesh.vertices_L) {
-        support = std::max(support, plane.head<3>().dot(v));
+    // RobotGeometry makes one element per collision element, in order.
+    if (link_elements[l].size() != collision.size()) continue;
+    for (std::size_t k = 0; k < collision.size(); ++k) {
+      const std::size_t e = link_elements[l][k];
+      SelfContactElement& out = elements[e];
+      const Eigen::Isometry3d& X_LE = collision[k].X_LE;
+      if (const auto* primitive = std::get_if<Primitive>(&collision[k].geometry)) {
+        out.primitive = *primitive;
+        out.X_EL = X_LE.inverse();
+        out.points_L = {X_LE.translation()};
+        out.deep_E = deepPoints(*primitive);
+        continue;
       }
-      out.supports_L.push_back(support);
+      const IndexedMesh mesh = indexedMesh(*prototypes.objects[e].collisionGeometry(), X_LE);
+      out.points_L = mesh.vertices_L;
+      if (mesh.vertices_L.size() < 4 || !closedAndConnected(mesh)) continue;
+      ClosedLinkMesh& closed = out.mesh;
+      closed.planes_L = outwardPlanes(mesh);
+      if (closed.planes_L.empty()) continue;
+      closed.vertices_L = mesh.vertices_L;
+      for (const Eigen::Vector3d& v : mesh.vertices_L) closed.centroid_L += v;
+      closed.centroid_L /= static_cast<double>(mesh.vertices_L.size());
+      for (const Eigen::Vector4d& plane : closed.planes_L) {
+        double support = -std::numeric_limits<double>::infinity();
+        for (const Eigen::Vector3d& v : mesh.vertices_L) {
+          support = std::max(support, plane.head<3>().dot(v));
+        }
+        closed.supports_L.push_back(support);
+      }
     }
   }
-  return meshes;
+  return elements;
 }
 
+namespace {
+
+// The point of `element` nearest `primitive`'s centre lies deep inside its solid. X_PL_EL takes
+// the element's link frame to the primitive's.
+bool pointInside(const SelfContactElement& element, const SelfContactElement& primitive,
+                 const Eigen::Isometry3d& X_PL_EL) {
+  if (element.points_L.empty()) return false;
+  const Eigen::Isometry3d X_PE = primitive.X_EL * X_PL_EL;  // element's L to the primitive's E
+  const Eigen::Vector3d c_L = X_PE.inverse().translation();
+  std::size_t nearest = 0;
+  double near2 = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < element.points_L.size(); ++i) {
+    const double d2 = (element.points_L[i] - c_L).squaredNorm();
+    if (d2 < near2) {
+      near2 = d2;
+      nearest = i;
+    }
+  }
+  return deepInside(*primitive.primitive, X_PE * element.points_L[nearest]);
+}
+
+}  // namespace
+
 bool certainPairContact(const RefineData& data, const RobotData& robot, int link_a, int link_b) {
-  const ClosedLinkMesh& a = data.closed_links_L[static_cast<std::size_t>(link_a)];
-  const ClosedLinkMesh& b = data.closed_links_L[static_cast<std::size_t>(link_b)];
-  if (a.empty() || b.empty()) return false;
+  const std::vector<std::size_t>& elements_a = data.link_elements[static_cast<std::size_t>(link_a)];
+  const std::vector<std::size_t>& elements_b = data.link_elements[static_cast<std::size_t>(link_b)];
   const Eigen::Isometry3d X_AB = robot.linkPose(link_a).inverse() * robot.linkPose(link_b);
-  return crosses(b, a, X_AB) || crosses(a, b, X_AB.inverse());
+  const Eigen::Isometry3d X_BA = X_AB.inverse();
+  for (std::size_t ea : elements_a) {
+    const SelfContactElement& a = data.self_elements[ea];
+    for (std::size_t eb : elements_b) {
+      const SelfContactElement& b = data.self_elements[eb];
+      if (!a.mesh.empty() && !b.mesh.empty() &&
+          (crosses(b.mesh, a.mesh, X_AB) || crosses(a.mesh, b.mesh, X_BA))) {
+        return true;
+      }
+      if (b.primitive &&
+          (pointInside(a, b, X_BA) ||
+           (!a.mesh.empty() && closedMeshCrossesPrimitive(a.mesh, b.deep_E, b.X_EL * X_BA)))) {
+        return true;
+      }
+      if (a.primitive &&
+          (pointInside(b, a, X_AB) ||
+           (!b.mesh.empty() && closedMeshCrossesPrimitive(b.mesh, a.deep_E, a.X_EL * X_AB)))) {
+        return true;
+      }
+    }
+  }
+  return false;
 }
 
 }  // namespace octomotion::detail

@@ -23,6 +23,15 @@
 
 namespace octomotion::detail {
 
+// Points of a primitive's solid at least kCertainDepth deep (deepPoints): its solid shrunk by
+// that depth (empty when the solid is thinner), the centre, and points on the shrunk solid's
+// boundary (a box's corners, eight points on each rim of a cylinder, a ball's six poles), in
+// the primitive's frame.
+struct DeepPoints {
+  std::optional<Primitive> core;
+  std::vector<Eigen::Vector3d> points;
+};
+
 struct RefineObject {
   std::vector<fcl::CollisionObjectd> shapes;  // one (primitive, mesh) or one box per voxel
   fcl::AABBd box_W;                           // of all shapes
@@ -35,6 +44,8 @@ struct RefineObject {
   // A primitive's exact or outer hull in O (primitiveHull); empty for other objects, whose hull
   // may hold points far from them (a concave mesh around a link).
   ConvexPoints hull_O;
+  // A primitive's deepPoints in O, for closedMeshCrossesPrimitive; empty for other objects.
+  DeepPoints deep_O;
 };
 
 // A convex set holding `spec`'s solid in W: a box's corners, a ball's centre grown by its radius,
@@ -48,7 +59,7 @@ inline constexpr double kCertainDepth = 1e-4;
 // Witness points kept per mesh element: its vertices, spread out (farthest first).
 inline constexpr std::size_t kWitnessPoints = 24;
 
-// A link that is one closed mesh, in its frame L, for certain self contacts
+// A closed mesh element in its link's frame L, for certain self contacts
 // (certainPairContact): its vertices, its face planes with outward normals (n, d: n . p <= d
 // on the inner side) and, per face, the largest n . v over the vertices (the hull's extent
 // along n); empty otherwise.
@@ -58,6 +69,18 @@ struct ClosedLinkMesh {
   std::vector<double> supports_L;
   Eigen::Vector3d centroid_L = Eigen::Vector3d::Zero();  // of the vertices
   bool empty() const { return planes_L.empty(); }
+};
+
+// A robot element as the certain self contacts see it (selfContactElements): a closed mesh,
+// or a primitive solid with its frame, and its points in L: a mesh's vertices (on the
+// triangles FCL tests), a primitive's centre (inside its solid). A primitive also keeps its
+// deepPoints in its frame E.
+struct SelfContactElement {
+  ClosedLinkMesh mesh;
+  std::optional<Primitive> primitive;
+  Eigen::Isometry3d X_EL = Eigen::Isometry3d::Identity();
+  std::vector<Eigen::Vector3d> points_L;
+  DeepPoints deep_E;
 };
 
 struct RefineData {
@@ -79,8 +102,8 @@ struct RefineData {
   // Per robot link with a hull: the box of its hull's points in L (centre, half sides), tested
   // before GJK (refineHullsApart): tighter than the voxel boxes, and a few operations.
   std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> link_hull_boxes_L;
-  // Per robot link: its closed mesh, or empty (closedLinkMeshes).
-  std::vector<ClosedLinkMesh> closed_links_L;
+  // Per robot element: what certain self contacts use (selfContactElements).
+  std::vector<SelfContactElement> self_elements;
 };
 
 // Hulls closer than this are left to the octree and FCL: far above rounding in the poses,
@@ -118,7 +141,8 @@ RefineScratch& refineScratch(const RefineData& data, const RobotModel& model, st
 void refinePoseLink(const RefineData& data, RefineScratch& r, const RobotData& robot, int link);
 
 // Without FCL: a witness point of one of `link`'s elements lies kCertainDepth inside a primitive
-// obstacle, so FCL finds a contact (its triangle, or its solid, meets the obstacle's solid).
+// obstacle, so FCL finds a contact (its triangle, or its solid, meets the obstacle's solid); or
+// a closed mesh element crosses the obstacle (closedMeshCrossesPrimitive).
 bool certainLinkContact(const RefineData& data, RefineScratch& r, const RobotData& robot, int link);
 // FCL: one of `link`'s elements touches one of the objects' shapes.
 bool refineLinkHits(const RefineData& data, RefineScratch& r, const RobotData& robot, int link);
@@ -142,15 +166,30 @@ bool linkApartFromObject(const RefineData& data, const RobotData& robot, int lin
 // separating direction.
 bool refineHullsApart(const RefineData& data, const RobotData& robot, int link_a, int link_b,
                       Eigen::Vector3d& direction);
-// Each link that is one closed mesh (every edge in two triangles with windings that agree, one
-// surface, triangles with area), checked once at build time; empty entries for the others.
-std::vector<ClosedLinkMesh> closedLinkMeshes(
+// Per robot element, checked once at build time: its closed mesh (every edge in two triangles
+// with windings that agree, one surface, triangles with area) or its primitive, and its points
+// in L. Elements of links whose collision list does not match RobotGeometry's are left empty.
+std::vector<SelfContactElement> selfContactElements(
     const fcl_internal::RobotGeometry& robot, const RobotModel& model,
     const std::vector<std::vector<std::size_t>>& link_elements);
-// Without FCL: link_a and link_b are closed meshes and a vertex of one lies kCertainDepth
-// inside the other's every face plane (so inside its solid) while another lies kCertainDepth
-// outside its hull, so their surfaces cross and FCL's mesh test reports a contact.
+// Without FCL: an element of link_a and one of link_b are certainly in contact, so FCL's
+// element test reports a contact. Either both are closed meshes and a vertex of one lies
+// kCertainDepth inside the other's every face plane (so inside its solid) while another lies
+// kCertainDepth outside its hull, so their surfaces cross; or one is a primitive (a solid for
+// FCL) with the other's point nearest its centre (a vertex, or a primitive's centre)
+// kCertainDepth inside it, or crossed by the other's closed mesh (closedMeshCrossesPrimitive).
 bool certainPairContact(const RefineData& data, const RobotData& robot, int link_a, int link_b);
+// p_O lies at least kCertainDepth inside the primitive (in its frame O).
+bool deepInside(const Primitive& shape, const Eigen::Vector3d& p_O);
+DeepPoints deepPoints(const Primitive& shape);
+// Without FCL: a closed mesh (its frame M; X_PM places it in the primitive's frame P) and a
+// primitive solid are in contact for FCL. The point of the solid's deep core nearest the mesh's
+// vertex centroid lies kCertainDepth inside the mesh's every face plane (so inside its solid),
+// and another of its deep points kCertainDepth outside the mesh's hull: the segment between
+// them lies kCertainDepth deep in the convex solid and leaves the mesh's, so a point of the
+// mesh's surface lies that deep in the primitive, which FCL's triangle test finds.
+bool closedMeshCrossesPrimitive(const ClosedLinkMesh& mesh, const DeepPoints& deep,
+                                const Eigen::Isometry3d& X_PM);
 // The hull in its frame of a box, ball or cylinder (convex_gap.h): a distance to it is at most
 // the distance to the solid.
 ConvexPoints primitiveHull(const Primitive& shape);
