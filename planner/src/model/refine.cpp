@@ -185,12 +185,20 @@ bool certainLinkContact(const RefineData& data, RefineScratch& r, const RobotDat
   refinePoseLink(data, r, robot, link);
   for (std::size_t e : data.link_elements[static_cast<std::size_t>(link)]) {
     const std::vector<Eigen::Vector3d>& witnesses = data.element_witnesses_E[e];
-    const ClosedLinkMesh& closed = data.self_elements[e].mesh;
-    if (witnesses.empty() && closed.empty()) continue;
+    const SelfContactElement& kind = data.self_elements[e];
+    const ClosedLinkMesh& closed = kind.mesh;
+    if (witnesses.empty() && closed.empty() && !kind.primitive) continue;
     const fcl::CollisionObjectd& element = r.fcl.objects[e];
     for (const RefineObject& object : data.objects) {
       if (!object.primitive || !object.box_W.overlap(element.getAABB())) continue;
       const Eigen::Isometry3d X_OE = object.X_OW * element.getTransform();
+      if (kind.primitive) {  // two solids
+        if (primitivesOverlap(*object.primitive, object.deep_O, *kind.primitive, kind.deep_E,
+                              X_OE)) {
+          return true;
+        }
+        continue;
+      }
       for (const Eigen::Vector3d& p_E : witnesses) {
         if (deepInside(*object.primitive, X_OE * p_E)) return true;
       }

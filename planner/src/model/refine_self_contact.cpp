@@ -209,6 +209,14 @@ DeepPoints deepPoints(const Primitive& shape) {
   return out;
 }
 
+bool primitivesOverlap(const Primitive& a, const DeepPoints& deep_a, const Primitive& b,
+                       const DeepPoints& deep_b, const Eigen::Isometry3d& X_AB) {
+  if (!deep_a.core || !deep_b.core) return false;
+  const Eigen::Isometry3d X_BA = X_AB.inverse();
+  return deepInside(b, X_BA * closestPoint(*deep_a.core, X_AB.translation())) ||
+         deepInside(a, X_AB * closestPoint(*deep_b.core, X_BA.translation()));
+}
+
 bool closedMeshCrossesPrimitive(const ClosedLinkMesh& mesh, const DeepPoints& deep,
                                 const Eigen::Isometry3d& X_PM) {
   if (!deep.core) return false;
@@ -298,6 +306,13 @@ bool certainPairContact(const RefineData& data, const RobotData& robot, int link
       if (!a.mesh.empty() && !b.mesh.empty() &&
           (crosses(b.mesh, a.mesh, X_AB) || crosses(a.mesh, b.mesh, X_BA))) {
         return true;
+      }
+      if (a.primitive && b.primitive) {
+        if (primitivesOverlap(*a.primitive, a.deep_E, *b.primitive, b.deep_E,
+                              a.X_EL * X_AB * b.X_EL.inverse())) {
+          return true;
+        }
+        continue;
       }
       if (b.primitive &&
           (pointInside(a, b, X_BA) ||

@@ -176,12 +176,17 @@ std::vector<SelfContactElement> selfContactElements(
 // element test reports a contact. Either both are closed meshes and a vertex of one lies
 // kCertainDepth inside the other's every face plane (so inside its solid) while another lies
 // kCertainDepth outside its hull, so their surfaces cross; or one is a primitive (a solid for
-// FCL) with the other's point nearest its centre (a vertex, or a primitive's centre)
-// kCertainDepth inside it, or crossed by the other's closed mesh (closedMeshCrossesPrimitive).
+// FCL) with the other mesh's vertex nearest its centre kCertainDepth inside it, or crossed by
+// the other's closed mesh (closedMeshCrossesPrimitive), or overlapping the other primitive
+// (primitivesOverlap).
 bool certainPairContact(const RefineData& data, const RobotData& robot, int link_a, int link_b);
 // p_O lies at least kCertainDepth inside the primitive (in its frame O).
 bool deepInside(const Primitive& shape, const Eigen::Vector3d& p_O);
 DeepPoints deepPoints(const Primitive& shape);
+// Without FCL: two primitive solids (frames A and B, X_AB placing B in A) overlap for FCL: the
+// point of one's deep core nearest the other's centre lies kCertainDepth inside the other.
+bool primitivesOverlap(const Primitive& a, const DeepPoints& deep_a, const Primitive& b,
+                       const DeepPoints& deep_b, const Eigen::Isometry3d& X_AB);
 // Without FCL: a closed mesh (its frame M; X_PM places it in the primitive's frame P) and a
 // primitive solid are in contact for FCL. The point of the solid's deep core nearest the mesh's
 // vertex centroid lies kCertainDepth inside the mesh's every face plane (so inside its solid),
