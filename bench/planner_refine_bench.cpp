@@ -24,6 +24,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -68,8 +69,9 @@ int run(int argc, char** argv) {
   }
   // (name, scene file): the first problem of each MotionBenchMaker set, then the SCENE files.
   std::vector<std::pair<std::string, std::string>> scenes;
+  std::optional<test::MbmProblems> extracted;  // its folder lives until the end
   if (sets > 0) {
-    const test::MbmProblems problems;
+    const test::MbmProblems& problems = extracted.emplace();
     const std::string panda = test::MbmProblems::panda();
     if (problems.problems().empty() || !std::filesystem::exists(panda + "/panda.urdf")) {
       throw InvalidArgument("no MotionBenchMaker problems or Panda under ../shared/data");
