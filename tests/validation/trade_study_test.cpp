@@ -197,6 +197,35 @@ TEST(TradeStudyTest, TargetsAreTheCallers) {
   EXPECT_NE(missed.str().find("target >= 20: **missed**"), std::string::npos) << missed.str();
 }
 
+// Without FCL+OctoMap rows (--no-fcl-octomap) the fastest setting without misses is the one
+// reported, not the first.
+TEST(TradeStudyTest, TargetsWithoutFclOctomapPickTheFastestSetting) {
+  TradeStudyResult result;
+  result.scene = "s";
+  CheckRow fcl;
+  fcl.checker = CheckerKind::kFcl;
+  fcl.states = 100;
+  fcl.mean_us = 10;
+  CheckRow slow;
+  slow.checker = CheckerKind::kOctree;
+  slow.resolution = 0.02;
+  slow.rounding = "conservative";
+  slow.states = 100;
+  slow.mean_us = 100;
+  slow.speedup_vs_fcl = 0.1;
+  CheckRow fast = slow;
+  fast.checker = CheckerKind::kOctreeFused;
+  fast.mean_us = 2;
+  fast.speedup_vs_fcl = 5;
+  result.checks = {fcl, slow, fast};
+  const StudyTargets targets = {0.02, 3.0, 2.0, 3.0, 10.0, 3.0, 100};
+  std::ostringstream out;
+  writeTargets(result, targets, out);
+  EXPECT_NE(out.str().find("full check, octree-fused 2 cm conservative"), std::string::npos)
+      << out.str();
+  EXPECT_NE(out.str().find("target >= 3: **met**"), std::string::npos) << out.str();
+}
+
 // A small arm study: bookshelf, 400 states, the fused conservative octree at 2 cm against FCL.
 TradeStudyOptions bookshelfFusedConservative() {
   TradeStudyOptions options;

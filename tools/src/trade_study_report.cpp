@@ -184,9 +184,12 @@ void writeTargets(const TradeStudyResult& result, const StudyTargets& targets, s
   if (!result.free_flying) {
     // The best octree setting whose false-positive rate is at most targets.max_fp_rate.
     const CheckRow* best = nullptr;
+    // Without FCL+OctoMap in the study (--no-fcl-octomap) the environment ratio is 0 for every
+    // row; the full check's ratio alone then ranks them.
     auto score = [&](const CheckRow& r) {
-      return std::min(r.speedup_vs_fcl / targets.full_speedup,
-                      r.env_speedup_vs_fcl_octomap / targets.env_speedup_vs_fcl_octomap);
+      const double full = r.speedup_vs_fcl / targets.full_speedup;
+      if (!(r.env_speedup_vs_fcl_octomap > 0)) return full;
+      return std::min(full, r.env_speedup_vs_fcl_octomap / targets.env_speedup_vs_fcl_octomap);
     };
     for (const CheckRow& r : result.checks) {
       // Only settings that never miss a contact count (center rounding does miss some).
