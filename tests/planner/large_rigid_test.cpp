@@ -99,6 +99,20 @@ TEST(LargeRigid, TheOmplDefaultValidatorKeepsOmplsOwnStep) {
             ompl_default);
 }
 
+// A pose of a free-flying body: its origin uniform in `bounds`, its rotation uniform (a
+// normalised Gaussian quaternion).
+Eigen::Isometry3d randomPose(const Eigen::AlignedBox3d& bounds, std::mt19937& rng) {
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::normal_distribution<double> normal;
+  Eigen::Isometry3d X_WB = Eigen::Isometry3d::Identity();
+  for (int a = 0; a < 3; ++a) {
+    X_WB.translation()[a] = bounds.min()[a] + unit(rng) * bounds.sizes()[a];
+  }
+  Eigen::Quaterniond r(normal(rng), normal(rng), normal(rng), normal(rng));
+  X_WB.linear() = r.normalized().toRotationMatrix();
+  return X_WB;
+}
+
 // The certified validator's clearance for the octree (the grid's, read through groups of
 // clearance spheres) never exceeds the exact distance, at random poses of the shipped rigid
 // bodies and of the generated building's large one.
@@ -115,16 +129,9 @@ TEST(LargeRigid, TheMotionClearanceIsALowerBoundOnTheExactDistance) {
     auto fcl_scratch = fcl.makeScratch();
     const Eigen::AlignedBox3d bounds = *scene.spec.problem.bounds;
     std::mt19937 rng(7);
-    std::uniform_real_distribution<double> unit(0.0, 1.0);
-    std::normal_distribution<double> normal;
     int free = 0, positive = 0;
     for (int i = 0; i < 1500; ++i) {
-      Eigen::Isometry3d X_WB = Eigen::Isometry3d::Identity();
-      for (int a = 0; a < 3; ++a) {
-        X_WB.translation()[a] = bounds.min()[a] + unit(rng) * bounds.sizes()[a];
-      }
-      Eigen::Quaterniond r(normal(rng), normal(rng), normal(rng), normal(rng));
-      X_WB.linear() = r.normalized().toRotationMatrix();
+      const Eigen::Isometry3d X_WB = randomPose(bounds, rng);
       if (octree->inCollision(nullptr, 0, X_WB, *octree_scratch)) continue;
       ++free;
       const double bound = octree->motionClearance(*octree_scratch);
@@ -156,15 +163,9 @@ TEST(LargeRigid, TheBuildingsMeshPiecesGiveFclsAnswersAndLowerBounds) {
   const Eigen::AlignedBox3d bounds = *scene.spec.problem.bounds;
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
-  std::normal_distribution<double> normal;
   int colliding = 0, near = 0, tight = 0;
   for (int i = 0; i < 3000; ++i) {
-    Eigen::Isometry3d X_WB = Eigen::Isometry3d::Identity();
-    for (int a = 0; a < 3; ++a) {
-      X_WB.translation()[a] = bounds.min()[a] + unit(rng) * bounds.sizes()[a];
-    }
-    Eigen::Quaterniond r(normal(rng), normal(rng), normal(rng), normal(rng));
-    X_WB.linear() = r.normalized().toRotationMatrix();
+    const Eigen::Isometry3d X_WB = randomPose(bounds, rng);
     const bool fcl_hit = fcl->inCollision(nullptr, 0, X_WB, *fcl_scratch);
     const double exact = fcl_hit ? 0.0 : fcl->clearance(*fcl_scratch);
     if (!fcl_hit && exact > 4 * voxel) continue;  // far from every wall: the octree decides
