@@ -6,6 +6,7 @@
 // state of the path free at 100 times its state density.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -26,6 +27,7 @@
 #include "octomotion/planner/ompl/certified_motion_validator.h"
 #include "octomotion/planner/ompl/planning_scene.h"
 #include "octomotion/planner/ompl/state_space.h"
+#include "octomotion/planner/reference/fcl_collision_model.h"
 #include "octomotion/tools/building_scene.h"
 #include "path_fcl.h"
 
@@ -97,6 +99,20 @@ TEST(LargeRigid, TheOmplDefaultValidatorKeepsOmplsOwnStep) {
             ompl_default);
 }
 
+// A pose of a free-flying body: its origin uniform in `bounds`, its rotation uniform (a
+// normalised Gaussian quaternion).
+Eigen::Isometry3d randomPose(const Eigen::AlignedBox3d& bounds, std::mt19937& rng) {
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::normal_distribution<double> normal;
+  Eigen::Isometry3d X_WB = Eigen::Isometry3d::Identity();
+  for (int a = 0; a < 3; ++a) {
+    X_WB.translation()[a] = bounds.min()[a] + unit(rng) * bounds.sizes()[a];
+  }
+  Eigen::Quaterniond r(normal(rng), normal(rng), normal(rng), normal(rng));
+  X_WB.linear() = r.normalized().toRotationMatrix();
+  return X_WB;
+}
+
 // The certified validator's clearance for the octree (the grid's, read through groups of
 // clearance spheres) never exceeds the exact distance, at random poses of the shipped rigid
 // bodies and of the generated building's large one.
@@ -113,16 +129,9 @@ TEST(LargeRigid, TheMotionClearanceIsALowerBoundOnTheExactDistance) {
     auto fcl_scratch = fcl.makeScratch();
     const Eigen::AlignedBox3d bounds = *scene.spec.problem.bounds;
     std::mt19937 rng(7);
-    std::uniform_real_distribution<double> unit(0.0, 1.0);
-    std::normal_distribution<double> normal;
     int free = 0, positive = 0;
     for (int i = 0; i < 1500; ++i) {
-      Eigen::Isometry3d X_WB = Eigen::Isometry3d::Identity();
-      for (int a = 0; a < 3; ++a) {
-        X_WB.translation()[a] = bounds.min()[a] + unit(rng) * bounds.sizes()[a];
-      }
-      Eigen::Quaterniond r(normal(rng), normal(rng), normal(rng), normal(rng));
-      X_WB.linear() = r.normalized().toRotationMatrix();
+      const Eigen::Isometry3d X_WB = randomPose(bounds, rng);
       if (octree->inCollision(nullptr, 0, X_WB, *octree_scratch)) continue;
       ++free;
       const double bound = octree->motionClearance(*octree_scratch);
@@ -134,6 +143,48 @@ TEST(LargeRigid, TheMotionClearanceIsALowerBoundOnTheExactDistance) {
     EXPECT_GT(free, 100);
     EXPECT_GT(positive, 0);  // the bound is not trivially 0
   }
+}
+
+// Exact refine cuts the building's one mesh into pieces of nearby triangles, each with its own
+// hull and FCL model (refine.cpp, meshPieces). At random poses of the large body near the walls
+// (fixed seed): the octree's answer with exact refine is FCL's on the whole mesh, and its
+// clearance for the certified validator, capped at a random value, is at most FCL's exact
+// distance and at least the least of that distance, the cap and an eighth of a voxel (below
+// that, FCL decides).
+TEST(LargeRigid, TheBuildingsMeshPiecesGiveFclsAnswersAndLowerBounds) {
+  ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
+  PlanningScene scene = loadPlanningScene(tools::writeBuildingScene(folder("pieces")));
+  const std::shared_ptr<const CollisionBackend> octree = checkerBackend(scene);
+  ASSERT_TRUE(octree->exactAnswers());
+  const std::shared_ptr<const FclCollisionModel> fcl = scene.fclModel();
+  auto octree_scratch = octree->makeBackendScratch();
+  auto fcl_scratch = fcl->makeBackendScratch();
+  const double voxel = scene.model->grid().voxelSize();
+  const Eigen::AlignedBox3d bounds = *scene.spec.problem.bounds;
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int colliding = 0, near = 0, tight = 0;
+  for (int i = 0; i < 3000; ++i) {
+    const Eigen::Isometry3d X_WB = randomPose(bounds, rng);
+    const bool fcl_hit = fcl->inCollision(nullptr, 0, X_WB, *fcl_scratch);
+    const double exact = fcl_hit ? 0.0 : fcl->clearance(*fcl_scratch);
+    if (!fcl_hit && exact > 4 * voxel) continue;  // far from every wall: the octree decides
+    ASSERT_EQ(octree->inCollision(nullptr, 0, X_WB, *octree_scratch), fcl_hit) << "state " << i;
+    if (fcl_hit) {
+      ++colliding;
+      continue;
+    }
+    ++near;
+    const double cap = unit(rng) * 3 * voxel;
+    double refined = 0;
+    octree->motionClearances(*octree_scratch, &cap, &refined);
+    EXPECT_LE(refined, exact + 1e-5) << "state " << i;  // FCL's GJK tolerance aside
+    EXPECT_GE(refined, std::min({exact, cap, voxel / 8}) - 1e-5) << "state " << i;
+    tight += exact < cap;
+  }
+  EXPECT_GT(colliding, 100);
+  EXPECT_GT(near, 100);
+  EXPECT_GT(tight, 20);
 }
 
 TEST(LargeRigid, TheGeneratedBuildingIsPlannedAndFclFindsThePathFree) {

@@ -3,9 +3,13 @@
 #include "internal/refine.h"
 
 #include <algorithm>
+#include <array>
+#include <cstdint>
 #include <limits>
 #include <string>
+#include <unordered_map>
 #include <utility>
+#include <vector>
 
 #include <fcl/geometry/bvh/BVH_model.h>
 #include <fcl/geometry/shape/box.h>
@@ -85,6 +89,75 @@ std::vector<Eigen::Vector3d> witnessesOf(const fcl::CollisionGeometryd& geometry
   return {};
 }
 
+// A mesh obstacle as pieces of nearby triangles, each with its own FCL model, box and hull
+// (RefineObject): the pieces partition the triangles, so FCL's contact (with any piece) and
+// distance (the least over the pieces) are the mesh's, and each piece's hull holds its triangles
+// only, so a link beside one wall of a building is cleared (refineLinkHits) and bounded
+// (refineClearancesPerLink) by that wall's hull, not by the whole mesh's, which holds the link.
+// Pieces are split at the median of their triangles' centroids along the longest side of the
+// centroids' box while they have more than max(kPieceTriangles, triangles / kMaxPieces)
+// triangles, or more than one and a vertex box thicker than `thin` on every side (a hull that may
+// span free space: a floor's triangle with a wall's) as long as there are fewer than kMaxPieces.
+// A mesh of at most kPieceTriangles triangles within `thin` on a side stays one piece.
+constexpr std::size_t kPieceTriangles = 16;
+constexpr std::size_t kMaxPieces = 256;
+std::vector<TriangleMesh> meshPieces(const TriangleMesh& mesh, double thin) {
+  const std::size_t most = std::max(kPieceTriangles, mesh.triangles.size() / kMaxPieces);
+  std::vector<Eigen::Vector3d> centroids;
+  for (const auto& t : mesh.triangles) {
+    centroids.push_back((mesh.vertices[t[0]] + mesh.vertices[t[1]] + mesh.vertices[t[2]]) / 3);
+  }
+  std::vector<std::uint32_t> order(mesh.triangles.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<std::uint32_t>(i);
+  std::vector<TriangleMesh> pieces;
+  // [begin, end) of `order`, split until small enough.
+  std::vector<std::pair<std::size_t, std::size_t>> todo = {{0, order.size()}};
+  while (!todo.empty()) {
+    const auto [begin, end] = todo.back();
+    todo.pop_back();
+    bool split = end - begin > most;
+    if (!split && end - begin > 1 && pieces.size() + todo.size() + 2 <= kMaxPieces) {
+      Eigen::AlignedBox3d vertices;
+      for (std::size_t i = begin; i < end; ++i) {
+        for (std::uint32_t v : mesh.triangles[order[i]]) vertices.extend(mesh.vertices[v]);
+      }
+      split = vertices.sizes().minCoeff() > thin;
+    }
+    if (split) {
+      Eigen::AlignedBox3d box;
+      for (std::size_t i = begin; i < end; ++i) box.extend(centroids[order[i]]);
+      Eigen::Index axis = 0;
+      box.sizes().maxCoeff(&axis);
+      const std::size_t middle = begin + (end - begin) / 2;
+      std::nth_element(order.begin() + static_cast<std::ptrdiff_t>(begin),
+                       order.begin() + static_cast<std::ptrdiff_t>(middle),
+                       order.begin() + static_cast<std::ptrdiff_t>(end),
+                       [&](std::uint32_t a, std::uint32_t b) {
+                         return centroids[a][axis] < centroids[b][axis];
+                       });
+      todo.emplace_back(begin, middle);
+      todo.emplace_back(middle, end);
+      continue;
+    }
+    // The piece's triangles over its own vertices.
+    TriangleMesh piece;
+    std::unordered_map<std::uint32_t, std::uint32_t> index;
+    for (std::size_t i = begin; i < end; ++i) {
+      std::array<std::uint32_t, 3> t{};
+      for (int k = 0; k < 3; ++k) {
+        const std::uint32_t v = mesh.triangles[order[i]][static_cast<std::size_t>(k)];
+        const auto [it, added] =
+            index.emplace(v, static_cast<std::uint32_t>(piece.vertices.size()));
+        if (added) piece.vertices.push_back(mesh.vertices[v]);
+        t[static_cast<std::size_t>(k)] = it->second;
+      }
+      piece.triangles.push_back(t);
+    }
+    pieces.push_back(std::move(piece));
+  }
+  return pieces;
+}
+
 }  // namespace
 
 bool deepInside(const Primitive& shape, const Eigen::Vector3d& p_O) {
@@ -124,6 +197,23 @@ RefineData::RefineData(const RobotModel& model, const EnvironmentGeometry& envir
       object.deep_O = deepPoints(item.spec.primitive);
       has_primitives = true;
     } else if (item.spec.kind == EnvironmentObject::Kind::kMesh) {
+      const std::vector<TriangleMesh> pieces = meshPieces(item.mesh, 2 * grid.voxelSize());
+      if (pieces.size() > 1) {
+        // Each piece an object of its own, with its hull in W (X_OW stays the identity).
+        for (const TriangleMesh& piece : pieces) {
+          RefineObject part;
+          part.shapes.emplace_back(fcl_internal::meshOf(piece), item.spec.X_WO.rotation(),
+                                   item.spec.X_WO.translation());
+          fcl_internal::setTightAabb(part.shapes.back());
+          part.box_W = part.shapes.back().getAABB();
+          std::vector<Eigen::Vector3d> points_W;
+          for (const Eigen::Vector3d& v : piece.vertices) points_W.push_back(item.spec.X_WO * v);
+          part.hull_W = ConvexPoints(points_W);
+          part.hull_O = part.hull_W;
+          objects.push_back(std::move(part));
+        }
+        continue;
+      }
       add(fcl_internal::meshOf(item.mesh), item.spec.X_WO);
     } else {
       // Point clouds and OctoMaps are voxels by definition: their exact geometry is their black

@@ -32,6 +32,8 @@ struct DeepPoints {
   std::vector<Eigen::Vector3d> points;
 };
 
+// One object of the scene, or one piece of a large mesh object (a few nearby triangles: its
+// hull is then the piece's, not the whole mesh's).
 struct RefineObject {
   std::vector<fcl::CollisionObjectd> shapes;  // one (primitive, mesh) or one box per voxel
   fcl::AABBd box_W;                           // of all shapes
@@ -41,8 +43,9 @@ struct RefineObject {
   // In W, a convex set holding the object's solid (objectHull); empty for voxel objects. A
   // link whose hull is apart from it is free of it for FCL (refineLinkHits).
   ConvexPoints hull_W;
-  // A primitive's exact or outer hull in O (primitiveHull); empty for other objects, whose hull
-  // may hold points far from them (a concave mesh around a link).
+  // A primitive's exact or outer hull in O (primitiveHull); a piece of a large mesh's hull in W
+  // (X_OW the identity; refine.cpp, meshPieces); empty for other objects, whose hull may hold
+  // points far from them (a concave mesh around a link).
   ConvexPoints hull_O;
   // A primitive's deepPoints in O, for closedMeshCrossesPrimitive; empty for other objects.
   DeepPoints deep_O;
