@@ -18,6 +18,7 @@
 
 #include <ompl/util/Console.h>
 
+#include "joint_states.h"
 #include "octomotion/planner/ompl/certified_motion_validator.h"
 #include "octomotion/planner/ompl/planning_scene.h"
 #include "octomotion/planner/reference/fcl_collision_model.h"
@@ -37,14 +38,6 @@ RobotModel panda() {
   return robot;
 }
 
-std::vector<double> uniformQ(const RobotModel& robot, std::mt19937_64& rng) {
-  std::vector<double> q;
-  for (const Variable& v : robot.variables()) {
-    q.push_back(std::uniform_real_distribution<double>(v.lower, v.upper)(rng));
-  }
-  return q;
-}
-
 // Pair p's exact distance at q, by FCL on the two links' geometry.
 double fclPairDistance(const FclCollisionModel& fcl, BackendScratch& scratch,
                        const std::pair<int, int>& pair, const std::vector<double>& q) {
@@ -61,13 +54,16 @@ void expectBelowFcl(const RobotModel& robot, const LinkMotionBound& bound,
   const FclCollisionModel fcl(robot, EnvironmentGeometry::load({}));
   auto scratch = fcl.makeBackendScratch();
   std::mt19937_64 rng(seed);
+  const std::vector<std::vector<double>> qs = test::uniformJointStates(robot, states, seed);
+  const std::vector<std::vector<double>> ends =
+      test::uniformJointStates(robot, 2 * motions, seed + 1);
   std::size_t compared = 0, positive = 0;
   for (std::size_t p = 0; p < bound.pairs().size(); ++p) {
     if (!table.covers(p)) continue;
     const std::pair<int, int>& pair = bound.pairs()[p];
     SCOPED_TRACE(robot.link(pair.first).name + " / " + robot.link(pair.second).name);
     for (int s = 0; s < states; ++s) {
-      const std::vector<double> q = uniformQ(robot, rng);
+      const std::vector<double>& q = qs[static_cast<std::size_t>(s)];
       const double lower = table.at(p, q.data());
       EXPECT_GE(lower, 0.0);
       EXPECT_LE(lower, fclPairDistance(fcl, *scratch, pair, q) + kTolerance) << "state " << s;
@@ -75,8 +71,8 @@ void expectBelowFcl(const RobotModel& robot, const LinkMotionBound& bound,
       ++compared;
     }
     for (int m = 0; m < motions; ++m) {
-      const std::vector<double> q1 = uniformQ(robot, rng);
-      std::vector<double> q2 = uniformQ(robot, rng);
+      const std::vector<double>& q1 = ends[2 * static_cast<std::size_t>(m)];
+      std::vector<double> q2 = ends[2 * static_cast<std::size_t>(m) + 1];
       if (m % 2 == 1) {  // a short one, a tenth of the way
         for (std::size_t v = 0; v < q1.size(); ++v) q2[v] = q1[v] + 0.1 * (q2[v] - q1[v]);
       }

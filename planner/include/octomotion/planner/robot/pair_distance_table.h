@@ -10,8 +10,8 @@
 // apart at every configuration in it (h_v: the cell's half-width, from c to its farthest point
 // along v). The table holds, per cell, the largest such bound over the cells' centres evaluated
 // (a quadtree: coarse cells first, each split while its bound is not positive, down to the
-// finest), clamped at 0. A lookup is O(1); a straight-line motion's bound is the least over the
-// cells its projection crosses.
+// finest; one whose centre is in contact only down to a few cells), clamped at 0. A lookup is O(1);
+// a straight-line motion's bound is the least over the cells its projection crosses.
 #pragma once
 
 #include <cstddef>
