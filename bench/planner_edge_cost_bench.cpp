@@ -8,7 +8,8 @@
 // per plan, split the motion checks into accepted and rejected edges
 // (CertifiedMotionValidator::Counts): how many, milliseconds per edge, screen and proof state
 // checks per edge, states whose clearances were measured, exact pair distances, the deepest
-// bisection level and the edge's bound (metres of travel); `rejected_by_screen` is the share of
+// bisection level and the edge's bound (metres of travel), self pairs the pair table proved
+// over the whole edge (`table`); `rejected_by_screen` is the share of
 // rejected edges the screen rejected, `solved` the share of problems solved, and `plan_ms` the
 // median planning time.
 //
@@ -90,6 +91,7 @@ void run(benchmark::State& state, CheckerKind checker, int screen_levels) {
         sum->proof_checks += add->proof_checks;
         sum->clearance_states += add->clearance_states;
         sum->pair_distances += add->pair_distances;
+        sum->table_pairs += add->table_pairs;
         sum->depth += add->depth;
         sum->travel += add->travel;
         sum->seconds += add->seconds;
@@ -111,6 +113,7 @@ void run(benchmark::State& state, CheckerKind checker, int screen_levels) {
     state.counters[name + "proof"] = static_cast<double>(e->proof_checks) / edges;
     state.counters[name + "clear"] = static_cast<double>(e->clearance_states) / edges;
     state.counters[name + "pairs"] = static_cast<double>(e->pair_distances) / edges;
+    state.counters[name + "table"] = static_cast<double>(e->table_pairs) / edges;
     state.counters[name + "depth"] = static_cast<double>(e->depth) / edges;
     state.counters[name + "travel_m"] = e->travel / edges;
   }

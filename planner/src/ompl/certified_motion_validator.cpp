@@ -81,7 +81,7 @@ std::uint64_t nextSerial() {
 // The work of the edge at hand on this thread, added to the validator's counts when it ends.
 struct EdgeTally {
   std::size_t screen_checks = 0, proof_checks = 0, clearance_states = 0, pair_distances = 0;
-  std::size_t depth = 0, remembered_ends = 0;
+  std::size_t depth = 0, remembered_ends = 0, table_pairs = 0;
   double travel = 0.0;
   bool screened_out = false;
 };
@@ -92,7 +92,7 @@ thread_local EdgeTally tally;
 struct CertifiedMotionValidator::AtomicCounts {
   struct Edges {
     std::atomic<std::size_t> edges{0}, screen_checks{0}, proof_checks{0}, clearance_states{0},
-        pair_distances{0}, depth{0}, nanoseconds{0}, micrometres{0};
+        pair_distances{0}, table_pairs{0}, depth{0}, nanoseconds{0}, micrometres{0};
   };
   Edges accepted, rejected;
   std::atomic<std::size_t> rejected_by_screen{0}, remembered_ends{0};
@@ -113,6 +113,7 @@ CertifiedMotionValidator::Counts CertifiedMotionValidator::counts() const {
     c.proof_checks = e.proof_checks.load(std::memory_order_relaxed);
     c.clearance_states = e.clearance_states.load(std::memory_order_relaxed);
     c.pair_distances = e.pair_distances.load(std::memory_order_relaxed);
+    c.table_pairs = e.table_pairs.load(std::memory_order_relaxed);
     c.depth = e.depth.load(std::memory_order_relaxed);
     c.seconds = 1e-9 * static_cast<double>(e.nanoseconds.load(std::memory_order_relaxed));
     c.travel = 1e-6 * static_cast<double>(e.micrometres.load(std::memory_order_relaxed));
@@ -135,6 +136,7 @@ void CertifiedMotionValidator::resetCounts() const {
     e->proof_checks = 0;
     e->clearance_states = 0;
     e->pair_distances = 0;
+    e->table_pairs = 0;
     e->depth = 0;
     e->nanoseconds = 0;
     e->micrometres = 0;
@@ -167,6 +169,24 @@ CertifiedMotionValidator::CertifiedMotionValidator(const ob::SpaceInformationPtr
     throw InvalidArgument(
         "CertifiedMotionValidator: the motion bound was made before the robot's self pairs "
         "changed");
+  }
+  // Exact answers on a fixed-base arm: the self pairs' distance table, from the backend's own
+  // pair distances (exact for such backends) at the cells' centres. It is optional: a backend
+  // that cannot pose or measure leaves the validator without it.
+  if (!robot.isFreeFlying() && backend_->exactAnswers()) {
+    try {
+      std::unique_ptr<BackendScratch> scratch = backend_->makeBackendScratch();
+      const auto n = static_cast<std::size_t>(robot.variableCount());
+      const std::vector<std::pair<int, int>>& pairs = bound_->pairs();
+      pair_table_ = std::make_shared<const PairDistanceTable>(
+          robot, *bound_, [&](std::size_t p, const double* q, double cap) {
+            backend_->setPose(q, n, Eigen::Isometry3d::Identity(), *scratch);
+            return backend_->linkPairDistance(*scratch, pairs[p].first, pairs[p].second, cap);
+          });
+      pair_table_owner_ = backend_->id();
+    } catch (const std::exception&) {
+      pair_table_.reset();
+    }
   }
 }
 
@@ -201,6 +221,7 @@ void CertifiedMotionValidator::countMotion(bool free,
   e.proof_checks.fetch_add(tally.proof_checks, relaxed);
   e.clearance_states.fetch_add(tally.clearance_states, relaxed);
   e.pair_distances.fetch_add(tally.pair_distances, relaxed);
+  e.table_pairs.fetch_add(tally.table_pairs, relaxed);
   e.depth.fetch_add(tally.depth, relaxed);
   if (std::isfinite(tally.travel)) {
     e.micrometres.fetch_add(static_cast<std::size_t>(tally.travel * 1e6), relaxed);
@@ -292,6 +313,7 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
     if (b > decided_by_ends) t.active_pairs.push_back(p);
     max_pair = std::max(max_pair, b);
   }
+  const PairDistanceTable* table = robot.isFreeFlying() ? nullptr : pairTable();
   max_bound = std::max(max_link, max_pair);
   tally.travel = max_bound;
   // Exact answers: the travel below which an unproven interval rejects the edge.
@@ -386,7 +408,13 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
         const double cap =
             capOf(in, k, p, t.pair_bound[p], t.distance, pairs, in ? in->pairs_done : 0);
         if (cap <= 0) continue;
-        d[p] = bound_->pairDistance(p, *posed, cap);
+        // The table's bound at this state, when it covers the pair, else the spheres'.
+        const double looked_up = table ? table->at(p, t.q.data()) : 0.0;
+        if (looked_up >= cap) {
+          d[p] = cap;
+          continue;
+        }
+        d[p] = std::max(looked_up, bound_->pairDistance(p, *posed, cap));
         // The spheres' bound is too small and near contact: the links' own distance (farther,
         // FCL's distance costs more than the bisection the looser bound asks for).
         if (exact && d[p] < cap && d[p] < kExactNear * resolution_) {
@@ -422,8 +450,24 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
                     t.clearance.data() + in.slot_b * stride, in.b - in.a, in.links_done);
   };
   auto unprovenPairs = [&](Scratch::Interval& in) {
-    return unproven(t.active_pairs, t.pair_bound.data(), t.distance.data() + in.slot_a * pairs,
-                    t.distance.data() + in.slot_b * pairs, in.b - in.a, in.pairs_done);
+    const double* da = t.distance.data() + in.slot_a * pairs;
+    const double* db = t.distance.data() + in.slot_b * pairs;
+    const double open =
+        unproven(t.active_pairs, t.pair_bound.data(), da, db, in.b - in.a, in.pairs_done);
+    // A part of the edge: the table may prove a pair along it (not along the whole edge, which
+    // it did not).
+    if (open == 0.0 || !table || (in.a == 0.0 && in.b == 1.0)) return open;
+    bool more = false;
+    for (std::size_t k = 0; k < t.active_pairs.size() && k < 64; ++k) {
+      const std::size_t p = t.active_pairs[k];
+      if ((in.pairs_done >> k & 1) || !table->covers(p)) continue;
+      if (table->along(p, t.q1.data(), t.q2.data(), in.a, in.b) > 0) {
+        in.pairs_done |= std::uint64_t{1} << k;
+        more = true;
+      }
+    }
+    return more ? unproven(t.active_pairs, t.pair_bound.data(), da, db, in.b - in.a, in.pairs_done)
+                : open;
   };
 
   // Exact answers: the last valid state reported is a proven interval's end at least the minimum
@@ -443,7 +487,7 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
     // s1 is valid by contract; its clearances are still needed (0 if it is not valid after
     // all: the slot stays zero).
     const bool need_clearance = !t.active_links.empty();
-    const bool need_distance = !t.active_pairs.empty();
+    bool need_distance = !t.active_pairs.empty();  // after the pair table, below
     // An end: remembered, or checked (and remembered when valid).
     constexpr double kUnknown = std::numeric_limits<double>::quiet_NaN();
     // The end's place in the remembered ends (its key in t.key): it is remembered when the
@@ -520,6 +564,20 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
         return false;
       }
       screened_levels = levels;
+    }
+    // Pairs whose table bound is positive along the whole edge are proven free over it (after
+    // the screen, which rejects most edges without them).
+    if (table) {
+      std::size_t kept = 0;
+      for (std::size_t p : t.active_pairs) {
+        if (table->covers(p) && table->along(p, t.q1.data(), t.q2.data(), 0.0, 1.0) > 0) {
+          ++tally.table_pairs;
+        } else {
+          t.active_pairs[kept++] = p;
+        }
+      }
+      t.active_pairs.resize(kept);
+      need_distance = kept > 0;
     }
     // s2 first: an edge to an invalid state (most rejected edges) ends before s1 is looked at.
     std::size_t slot1 = 0, slot2 = 0;

@@ -21,6 +21,10 @@
 // - exact answers carry none: a link or pair is proven only by the clearances, and an interval
 //   whose unproven links' or pairs' bound falls below kExactMinTravel * resolution rejects the
 //   edge, so every accepted edge is proven free for the exact geometry.
+// Self pairs whose distance depends on at most two variables (a wrist's) are looked up in a
+// PairDistanceTable (robot/pair_distance_table.h) built with the validator for exact answers: a
+// pair whose table bound is positive along the whole edge (or an interval) is proven there
+// without a distance, and the table's bound at a state stands in for one where it suffices.
 // Before the proof, a collision screen (kScreenLevels) checks states of the edge for collision
 // alone, coarse to fine: an edge through a colliding state is rejected without a clearance.
 // Each thread remembers the last valid ends it checked (their clearances and pair distances), so
@@ -42,6 +46,7 @@
 
 #include "octomotion/planner/model/collision_backend.h"
 #include "octomotion/planner/robot/motion_bound.h"
+#include "octomotion/planner/robot/pair_distance_table.h"
 #include "octomotion/planner/scene/attached_object.h"
 #include "octomotion/planner/scene/scene.h"
 
@@ -99,6 +104,7 @@ class CertifiedMotionValidator : public ompl::base::MotionValidator {
     std::size_t proof_checks = 0;      // checks of the proof (environment and self-only)
     std::size_t clearance_states = 0;  // states whose link clearances were measured
     std::size_t pair_distances = 0;    // CollisionBackend::linkPairDistance calls
+    std::size_t table_pairs = 0;       // pairs proven over the whole edge by the pair table
     std::size_t depth = 0;             // sum over the edges of their deepest bisection level
     double travel = 0.0;               // sum over the edges of their bound (metres)
     double seconds = 0.0;
@@ -116,6 +122,12 @@ class CertifiedMotionValidator : public ompl::base::MotionValidator {
   void resetCounts() const;
 
   double resolution() const { return resolution_; }
+  // The self pairs' distance table (built at construction for exact answers on a fixed-base
+  // robot, with the backend's linkPairDistance), or null: none, or the backend's model changed
+  // since (its id differs: an object was attached or the world updated).
+  const PairDistanceTable* pairTable() const {
+    return pair_table_ && backend_->id() == pair_table_owner_ ? pair_table_.get() : nullptr;
+  }
   const CollisionBackend& backend() const { return *backend_; }
 
  private:
@@ -127,6 +139,8 @@ class CertifiedMotionValidator : public ompl::base::MotionValidator {
   std::shared_ptr<const CollisionBackend> backend_;
   std::shared_ptr<const LinkMotionBound> bound_;
   double resolution_;
+  std::shared_ptr<const PairDistanceTable> pair_table_;
+  std::uint64_t pair_table_owner_ = 0;  // the backend's id when the table was built
   std::uint64_t serial_;
   int screen_levels_ =
       kScreenLevels;  // process-unique: a thread's remembered states belong to one validator

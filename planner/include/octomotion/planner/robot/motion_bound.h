@@ -66,6 +66,12 @@ class LinkMotionBound {
   // motion dq (variableCount() values): the sum of the two links' path-length bounds in their
   // common ancestor's frame; 0 when no joint moves them apart.
   double pairBound(std::size_t p, const double* dq) const;
+  // Pair p's lever for variable v (pairBound is sum_v pairLever(p, v) |dq_v|): 0 when no joint
+  // of that variable moves one link of the pair and not the other.
+  double pairLever(std::size_t p, int variable) const {
+    return pair_levers_[p * static_cast<std::size_t>(variable_count_) +
+                        static_cast<std::size_t>(variable)];
+  }
   // A lower bound (>= 0) on the distance between the two links' geometry of pair p at the link
   // poses in `data`, or `cap` when that bound is at least `cap`: spheres about the links'
   // points (a whole-link sphere, then kPairSlabs spheres each along the link's longest side).
