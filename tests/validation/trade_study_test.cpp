@@ -167,23 +167,28 @@ TEST(TradeStudyTest, ConservativeSettingsHaveNoFalseNegatives) {
   EXPECT_NE(md.str().find("| fcl | exact |"), std::string::npos);
 }
 
+// A check row of 100 states for the target reports: FCL's (mean 10 us) or a conservative one
+// at 2 cm with its mean and ratio to FCL.
+CheckRow targetRow(CheckerKind checker, double mean_us, double speedup_vs_fcl = 1) {
+  CheckRow row;
+  row.checker = checker;
+  row.states = 100;
+  row.mean_us = mean_us;
+  if (checker != CheckerKind::kFcl) {
+    row.resolution = 0.02;
+    row.rounding = "conservative";
+    row.speedup_vs_fcl = speedup_vs_fcl;
+  }
+  return row;
+}
+
 // The targets are the caller's: the report names them and the verdicts follow them.
 TEST(TradeStudyTest, TargetsAreTheCallers) {
   TradeStudyResult result;
   result.scene = "s";
-  CheckRow fcl;
-  fcl.checker = CheckerKind::kFcl;
-  fcl.states = 100;
-  fcl.mean_us = 10;
-  CheckRow octree;
-  octree.checker = CheckerKind::kOctreeFused;
-  octree.resolution = 0.02;
-  octree.rounding = "conservative";
-  octree.states = 100;
-  octree.mean_us = 1;
-  octree.speedup_vs_fcl = 10;
+  CheckRow octree = targetRow(CheckerKind::kOctreeFused, 1, 10);
   octree.env_speedup_vs_fcl_octomap = 4;
-  result.checks = {fcl, octree};
+  result.checks = {targetRow(CheckerKind::kFcl, 10), octree};
   const StudyTargets easy = {0.02, 5.0, 2.0, 3.0, 10.0, 3.0, 100};
   std::ostringstream met;
   writeTargets(result, easy, met);
@@ -202,22 +207,8 @@ TEST(TradeStudyTest, TargetsAreTheCallers) {
 TEST(TradeStudyTest, TargetsWithoutFclOctomapPickTheFastestSetting) {
   TradeStudyResult result;
   result.scene = "s";
-  CheckRow fcl;
-  fcl.checker = CheckerKind::kFcl;
-  fcl.states = 100;
-  fcl.mean_us = 10;
-  CheckRow slow;
-  slow.checker = CheckerKind::kOctree;
-  slow.resolution = 0.02;
-  slow.rounding = "conservative";
-  slow.states = 100;
-  slow.mean_us = 100;
-  slow.speedup_vs_fcl = 0.1;
-  CheckRow fast = slow;
-  fast.checker = CheckerKind::kOctreeFused;
-  fast.mean_us = 2;
-  fast.speedup_vs_fcl = 5;
-  result.checks = {fcl, slow, fast};
+  result.checks = {targetRow(CheckerKind::kFcl, 10), targetRow(CheckerKind::kOctree, 100, 0.1),
+                   targetRow(CheckerKind::kOctreeFused, 2, 5)};
   const StudyTargets targets = {0.02, 3.0, 2.0, 3.0, 10.0, 3.0, 100};
   std::ostringstream out;
   writeTargets(result, targets, out);
