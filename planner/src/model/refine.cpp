@@ -65,8 +65,8 @@ std::vector<Eigen::Vector3d> spreadOut(const std::vector<Eigen::Vector3d>& point
   return taken;
 }
 
-// A robot element's witnesses in its frame: a mesh's vertices (on its triangles), or the centre
-// of a box, ball or cylinder (inside its solid); none for anything else.
+// A robot element's witnesses in its frame: a mesh's vertices (on its triangles); none for
+// anything else.
 std::vector<Eigen::Vector3d> witnessesOf(const fcl::CollisionGeometryd& geometry) {
   if (geometry.getObjectType() == fcl::OT_BVH) {
     const auto* mesh = dynamic_cast<const fcl::BVHModel<fcl::OBBRSSd>*>(&geometry);
@@ -82,11 +82,7 @@ std::vector<Eigen::Vector3d> witnessesOf(const fcl::CollisionGeometryd& geometry
     }
     return spreadOut(vertices);
   }
-  const fcl::NODE_TYPE type = geometry.getNodeType();
-  if (type == fcl::GEOM_BOX || type == fcl::GEOM_SPHERE || type == fcl::GEOM_CYLINDER) {
-    return {Eigen::Vector3d::Zero()};
-  }
-  return {};
+  return {};  // primitive elements are tested as solids (primitivesOverlap)
 }
 
 // A mesh obstacle as pieces of nearby triangles, each with its own FCL model, box and hull

@@ -3,8 +3,9 @@
 // inside the other and another of its vertices kCertainDepth outside: the first's surface is
 // connected and has points on both sides of the second's, so the two surfaces cross, and FCL's
 // mesh test (triangle against triangle) reports the crossing. A primitive is a solid for FCL:
-// a mesh vertex (on a triangle FCL tests) or another primitive's centre kCertainDepth inside it
-// is a contact. Such a pair needs neither its voxels nor FCL, and the check stops there.
+// a mesh vertex (on a triangle FCL tests) kCertainDepth inside it is a contact, so is a closed
+// mesh crossing it (closedMeshCrossesPrimitive) or another primitive overlapping it
+// (primitivesOverlap). Such a pair needs neither its voxels nor FCL, and the check stops there.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -211,8 +212,10 @@ DeepPoints deepPoints(const Primitive& shape) {
 
 bool primitivesOverlap(const Primitive& a, const DeepPoints& deep_a, const Primitive& b,
                        const DeepPoints& deep_b, const Eigen::Isometry3d& X_AB) {
-  if (!deep_a.core || !deep_b.core) return false;
   const Eigen::Isometry3d X_BA = X_AB.inverse();
+  // Each centre deep in the other, then each core's point nearest the other's centre.
+  if (deepInside(b, X_BA.translation()) || deepInside(a, X_AB.translation())) return true;
+  if (!deep_a.core || !deep_b.core) return false;
   return deepInside(b, X_BA * closestPoint(*deep_a.core, X_AB.translation())) ||
          deepInside(a, X_AB * closestPoint(*deep_b.core, X_BA.translation()));
 }
@@ -246,7 +249,6 @@ std::vector<SelfContactElement> selfContactElements(
       if (const auto* primitive = std::get_if<Primitive>(&collision[k].geometry)) {
         out.primitive = *primitive;
         out.X_EL = X_LE.inverse();
-        out.points_L = {X_LE.translation()};
         out.deep_E = deepPoints(*primitive);
         continue;
       }

@@ -74,10 +74,9 @@ struct ClosedLinkMesh {
   bool empty() const { return planes_L.empty(); }
 };
 
-// A robot element as the certain self contacts see it (selfContactElements): a closed mesh,
-// or a primitive solid with its frame, and its points in L: a mesh's vertices (on the
-// triangles FCL tests), a primitive's centre (inside its solid). A primitive also keeps its
-// deepPoints in its frame E.
+// A robot element as the certain contacts see it (selfContactElements): a mesh's vertices in L
+// (on the triangles FCL tests) and, when it is closed, its ClosedLinkMesh; or a primitive solid
+// with its frame and its deepPoints in that frame E.
 struct SelfContactElement {
   ClosedLinkMesh mesh;
   std::optional<Primitive> primitive;
@@ -94,8 +93,9 @@ struct RefineData {
   std::vector<RefineObject> objects;
   // Per robot link: its elements (indices in RobotGeometry's order).
   std::vector<std::vector<std::size_t>> link_elements;
-  // Per element, in its frame E: points of its surface whose triangles FCL tests (a mesh's
-  // vertices) or, for a primitive, its centre (inside its solid). Certain contacts.
+  // Per mesh element, in its frame E: points of its surface whose triangles FCL tests (its
+  // vertices, spread out), for certain contacts with primitive obstacles; none for primitive
+  // elements, which primitivesOverlap tests as solids.
   std::vector<std::vector<Eigen::Vector3d>> element_witnesses_E;
   bool has_primitives = false;  // some object is a primitive (certain contacts can exist)
   // Per robot link, in its frame: the hull of its elements' points (mesh vertices, box
@@ -187,7 +187,8 @@ bool certainPairContact(const RefineData& data, const RobotData& robot, int link
 bool deepInside(const Primitive& shape, const Eigen::Vector3d& p_O);
 DeepPoints deepPoints(const Primitive& shape);
 // Without FCL: two primitive solids (frames A and B, X_AB placing B in A) overlap for FCL: the
-// point of one's deep core nearest the other's centre lies kCertainDepth inside the other.
+// centre of one, or the point of its deep core nearest the other's centre, lies kCertainDepth
+// inside the other.
 bool primitivesOverlap(const Primitive& a, const DeepPoints& deep_a, const Primitive& b,
                        const DeepPoints& deep_b, const Eigen::Isometry3d& X_AB);
 // Without FCL: a closed mesh (its frame M; X_PM places it in the primitive's frame P) and a
