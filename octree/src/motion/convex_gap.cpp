@@ -341,12 +341,17 @@ ConvexPoints boxHull(const Eigen::Vector3d& half_extents) {
   if (!half_extents.allFinite() || !(half_extents.minCoeff() >= 0)) {
     throw InvalidArgument("boxHull: the half extents must be finite and >= 0");
   }
-  std::vector<Eigen::Vector3d> corners;
-  for (int corner = 0; corner < 8; ++corner) {
-    const Eigen::Vector3d sign((corner & 1) ? 1 : -1, (corner & 2) ? 1 : -1, (corner & 4) ? 1 : -1);
-    corners.push_back(half_extents.cwiseProduct(sign));
+  const std::array<Eigen::Vector3d, 8> corners = boxCorners(half_extents);
+  return ConvexPoints(std::vector<Eigen::Vector3d>(corners.begin(), corners.end()));
+}
+
+std::array<Eigen::Vector3d, 8> boxCorners(const Eigen::Vector3d& half_extents) {
+  std::array<Eigen::Vector3d, 8> corners;
+  for (int k = 0; k < 8; ++k) {
+    const Eigen::Vector3d sign((k & 1) ? 1 : -1, (k & 2) ? 1 : -1, (k & 4) ? 1 : -1);
+    corners[static_cast<std::size_t>(k)] = half_extents.cwiseProduct(sign);
   }
-  return ConvexPoints(corners);
+  return corners;
 }
 
 ConvexPoints ballHull(double radius) {

@@ -53,11 +53,7 @@ bool addElement(const fcl::CollisionGeometryd& geometry, const Eigen::Isometry3d
   }
   if (geometry.getNodeType() == fcl::GEOM_BOX) {
     const Eigen::Vector3d half = static_cast<const fcl::Boxd&>(geometry).side / 2;
-    for (int corner = 0; corner < 8; ++corner) {
-      const Eigen::Vector3d sign((corner & 1) ? 1 : -1, (corner & 2) ? 1 : -1,
-                                 (corner & 4) ? 1 : -1);
-      hull.add(X_LE * Eigen::Vector3d(half.cwiseProduct(sign)));
-    }
+    for (const Eigen::Vector3d& corner : boxCorners(half)) hull.add(X_LE * corner);
     return true;
   }
   return false;
@@ -97,10 +93,8 @@ ConvexPoints objectHull(const EnvironmentObject& spec, const TriangleMesh& mesh)
   double radius = 0;
   if (spec.kind == EnvironmentObject::Kind::kPrimitive) {
     if (const auto* box = std::get_if<Box>(&spec.primitive)) {
-      for (int corner = 0; corner < 8; ++corner) {
-        const Eigen::Vector3d sign((corner & 1) ? 1 : -1, (corner & 2) ? 1 : -1,
-                                   (corner & 4) ? 1 : -1);
-        points_W.push_back(spec.X_WO * Eigen::Vector3d(box->half_extents.cwiseProduct(sign)));
+      for (const Eigen::Vector3d& corner : boxCorners(box->half_extents)) {
+        points_W.push_back(spec.X_WO * corner);
       }
     } else if (const auto* ball = std::get_if<Sphere>(&spec.primitive)) {
       points_W.push_back(spec.X_WO.translation());

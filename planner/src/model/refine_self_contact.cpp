@@ -188,11 +188,8 @@ DeepPoints deepPoints(const Primitive& shape) {
   std::vector<Eigen::Vector3d>& points = out.points;
   points.push_back(Eigen::Vector3d::Zero());
   if (const auto* box = std::get_if<Box>(&*out.core)) {
-    for (int corner = 0; corner < 8; ++corner) {
-      const Eigen::Vector3d sign((corner & 1) ? 1 : -1, (corner & 2) ? 1 : -1,
-                                 (corner & 4) ? 1 : -1);
-      points.push_back(box->half_extents.cwiseProduct(sign));
-    }
+    const std::array<Eigen::Vector3d, 8> corners = boxCorners(box->half_extents);
+    points.insert(points.end(), corners.begin(), corners.end());
   } else if (const auto* ball = std::get_if<Sphere>(&*out.core)) {
     for (int axis = 0; axis < 3; ++axis) {
       points.push_back(ball->radius * Eigen::Vector3d::Unit(axis));

@@ -81,11 +81,14 @@ double convexDistanceBelow(const ConvexPoints& a, const ConvexPoints& b,
 
 // The points of exact or outer hulls of primitive solids, in the solid's frame (centred, a
 // cylinder along z), for convexDistanceBelow: a distance to them never exceeds the distance to
-// the solid. A box: its 8 corners (exact). A ball: its centre grown by the radius (exact). A
-// cylinder: two regular `sides`-gons circumscribing its end discs (an outer hull, wider than the
-// cylinder by at most radius * (1 / cos(pi / sides) - 1)). Throw InvalidArgument for a
+// the solid. A box: its 8 corners (exact, boxCorners). A ball: its centre grown by the radius
+// (exact). A cylinder: two regular `sides`-gons circumscribing its end discs (an outer hull, wider
+// than the cylinder by at most radius * (1 / cos(pi / sides) - 1)). Throw InvalidArgument for a
 // non-finite or negative size, or fewer than 3 sides.
 ConvexPoints boxHull(const Eigen::Vector3d& half_extents);
+// The 8 corners of the box of these half extents about the origin, corner k at
+// (+-x, +-y, +-z) with the sign of each axis from bit 0, 1, 2 of k (set: +).
+std::array<Eigen::Vector3d, 8> boxCorners(const Eigen::Vector3d& half_extents);
 ConvexPoints ballHull(double radius);
 ConvexPoints cylinderHull(double radius, double length, int sides = 32);
 
