@@ -63,9 +63,7 @@ void run(benchmark::State& state, CheckerKind checker, int screen_levels) {
     for (const test::MbmProblem& p : chosen(set)) {
       const std::string path = set.folder() + "/" + p.set + "_" +
                                std::filesystem::path(p.request).stem().string() + "_edge_cost.yaml";
-      std::ofstream(path) << "robot: {urdf: " << panda << "/panda.urdf, srdf: " << panda
-                          << "/panda.srdf}\nenvironment:\n  - moveit_scene: " << p.scene
-                          << "\nproblem: {moveit_request: " << p.request << ", seed: 1, time: 1}\n";
+      test::MbmProblems::writeScene(path, p, ", seed: 1, time: 1");
       SceneOverrides overrides;
       overrides.checker = checker;
       PlanningScene scene = loadPlanningScene(path, overrides, [](const std::string&) {});

@@ -72,9 +72,7 @@ std::vector<Problem> loadProblems(const test::MbmProblems& set, CheckerKind chec
   std::mt19937_64 rng(1);
   for (const test::MbmProblem& p : set.firstOfEachSet()) {
     const std::string path = set.folder() + "/" + p.set + "_bench.yaml";
-    std::ofstream(path) << "robot: {urdf: " << panda << "/panda.urdf, srdf: " << panda
-                        << "/panda.srdf}\nenvironment:\n  - moveit_scene: " << p.scene
-                        << "\nproblem: {moveit_request: " << p.request << ", seed: 1}\n";
+    test::MbmProblems::writeScene(path, p, ", seed: 1");
     SceneOverrides overrides;
     overrides.checker = checker;
     overrides.refine = refine;

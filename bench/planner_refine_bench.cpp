@@ -80,9 +80,7 @@ int run(int argc, char** argv) {
     first.resize(std::min<std::size_t>(first.size(), static_cast<std::size_t>(sets)));
     for (const test::MbmProblem& p : first) {
       const std::string scene_path = problems.folder() + "/" + p.set + "_bench.yaml";
-      std::ofstream(scene_path) << "robot: {urdf: " << panda << "/panda.urdf, srdf: " << panda
-                                << "/panda.srdf}\nenvironment:\n  - moveit_scene: " << p.scene
-                                << "\nproblem: {moveit_request: " << p.request << "}\n";
+      test::MbmProblems::writeScene(scene_path, p);
       scenes.emplace_back(p.set, scene_path);
     }
   }

@@ -55,9 +55,7 @@ class CertifiedExact : public ::testing::TestWithParam<Case> {
       }
       ASSERT_FALSE(problem.scene.empty());
       path = problems.folder() + "/exact.yaml";
-      std::ofstream(path) << "robot: {urdf: " << panda << "/panda.urdf, srdf: " << panda
-                          << "/panda.srdf}\nenvironment:\n  - moveit_scene: " << problem.scene
-                          << "\nproblem: {moveit_request: " << problem.request << "}\n";
+      test::MbmProblems::writeScene(path, problem);
     }
     SceneOverrides o;
     o.checker = GetParam().checker;

@@ -55,9 +55,7 @@ TEST_P(CertifiedScreen, RejectsOnlyEdgesThroughACollidingStateAndKeepsTheProof) 
   }
   ASSERT_FALSE(problem.scene.empty());
   const std::string path = mbm().folder() + "/screen_" + GetParam().name + ".yaml";
-  std::ofstream(path) << "robot: {urdf: " << panda << "/panda.urdf, srdf: " << panda
-                      << "/panda.srdf}\nenvironment:\n  - moveit_scene: " << problem.scene
-                      << "\nproblem: {moveit_request: " << problem.request << "}\n";
+  test::MbmProblems::writeScene(path, problem);
   SceneOverrides o;
   o.checker = GetParam().checker;
   PlanningScene scene = loadPlanningScene(path, o, [](const std::string&) {});

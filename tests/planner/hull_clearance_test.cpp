@@ -51,9 +51,7 @@ class HullClearance : public ::testing::TestWithParam<const char*> {
     }
     ASSERT_FALSE(problem.scene.empty()) << GetParam();
     const std::string path = problems.folder() + "/hull_" + GetParam() + ".yaml";
-    std::ofstream(path) << "robot: {urdf: " << panda << "/panda.urdf, srdf: " << panda
-                        << "/panda.srdf}\nenvironment:\n  - moveit_scene: " << problem.scene
-                        << "\nproblem: {moveit_request: " << problem.request << "}\n";
+    test::MbmProblems::writeScene(path, problem);
     SceneOverrides o;
     o.refine = RefineMode::kExact;  // what the default (auto) means here; said explicitly
     scene_ = loadPlanningScene(path, o, [](const std::string&) {});

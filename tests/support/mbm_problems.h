@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,15 @@ class MbmProblems {
   }
   static std::string panda() {
     return std::string(OCTOMOTION_SOURCE_DIR) + "/../shared/data/panda";
+  }
+
+  // Writes a scene file at `path` in which the real Panda (panda()) plans problem p: its scene
+  // and request; `problem_extra` adds keys to the problem map (e.g. ", seed: 1").
+  static void writeScene(const std::string& path, const MbmProblem& p,
+                         const std::string& problem_extra = "") {
+    std::ofstream(path) << "robot: {urdf: " << panda() << "/panda.urdf, srdf: " << panda()
+                        << "/panda.srdf}\nenvironment:\n  - moveit_scene: " << p.scene
+                        << "\nproblem: {moveit_request: " << p.request << problem_extra << "}\n";
   }
 
   MbmProblems() {

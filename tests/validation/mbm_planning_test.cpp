@@ -36,10 +36,8 @@ TEST(MbmPlanning, OneProblemOfEachSetPlansInSevenDimensionsAndFclFindsThePathFre
   for (const test::MbmProblem& p : problems) {
     SCOPED_TRACE(p.request);
     const std::string scene_path = set.folder() + "/" + p.set + ".yaml";
-    std::ofstream(scene_path) << "robot: {urdf: " << panda << "/panda.urdf, srdf: " << panda
-                              << "/panda.srdf}\nenvironment:\n  - moveit_scene: " << p.scene
-                              << "\nproblem: {moveit_request: " << p.request
-                              << ", time: 60, seed: 1}\n";  // a cap: RRTConnect stops when solved
+    test::MbmProblems::writeScene(scene_path, p,
+                                  ", time: 60, seed: 1");  // a cap: RRTConnect stops when solved
     // The discrete validator: the certified one is slow on some of these problems under the
     // sanitizers (its self pairs are checked at a voxel of travel); FCL re-checks either way.
     SceneOverrides o;

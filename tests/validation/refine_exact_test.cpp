@@ -277,9 +277,7 @@ TEST(RefineExact, PandaInMotionBenchMakerScenesAgreesWithFcl) {
   for (const test::MbmProblem& p : problems) {
     SCOPED_TRACE(p.request);
     const std::string scene_path = set.folder() + "/" + p.set + "_refine.yaml";
-    std::ofstream(scene_path) << "robot: {urdf: " << panda << "/panda.urdf, srdf: " << panda
-                              << "/panda.srdf}\nenvironment:\n  - moveit_scene: " << p.scene
-                              << "\nproblem: {moveit_request: " << p.request << "}\n";
+    test::MbmProblems::writeScene(scene_path, p);
     const PlanningScene scene = loadExact(scene_path, {});
     const std::vector<Sample> samples = uniformSamples(scene, 1000, kSeed + 3);
     const Agreement a = compare(scene, samples);
