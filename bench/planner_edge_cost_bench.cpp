@@ -12,16 +12,22 @@
 // over the whole edge (`table`); `rejected_by_screen` is the share of
 // rejected edges the screen rejected, `solved` the share of problems solved, and `plan_ms` the
 // median planning time.
+// BM_GridClearance times one of a clearance state's parts alone: the per-link grid bound
+// (OctreeCollisionModel::clearanceLowerBoundGridPerLink) at 256 random collision-free states of
+// the first problem of each set, every link asked for a clearance of `cap_cm` (100: as at an
+// edge's ends, where the whole edge's bound is asked; 10: deep in a bisection).
 //
 //   build/bench/planner_edge_cost_bench --benchmark_filter=octree   (one command line)
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <memory>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -143,6 +149,73 @@ BENCHMARK_CAPTURE(run, fcl, CheckerKind::kFcl, kDefault)
 BENCHMARK_CAPTURE(run, fcl_noscreen, CheckerKind::kFcl, 0)
     ->Unit(benchmark::kMillisecond)
     ->Iterations(1);
+
+void BM_GridClearance(benchmark::State& state) {
+  ompl::msg::setLogLevel(ompl::msg::LOG_NONE);
+  static const test::MbmProblems set;
+  if (set.problems().empty() ||
+      !std::filesystem::exists(test::MbmProblems::panda() + "/panda.urdf")) {
+    state.SkipWithError("no MotionBenchMaker problems or Panda under ../shared/data");
+    return;
+  }
+  struct Posed {
+    std::shared_ptr<const OctreeCollisionModel> model;
+    std::vector<RobotData> poses;
+  };
+  std::vector<Posed> scenes;
+  std::map<std::string, bool> seen;
+  std::mt19937_64 rng(11);
+  for (const test::MbmProblem& p : set.problems()) {
+    if (seen[p.set]) continue;
+    seen[p.set] = true;
+    const std::string path = set.folder() + "/" + p.set + "_grid_clearance.yaml";
+    test::MbmProblems::writeScene(path, p);
+    const PlanningScene scene = loadPlanningScene(path, {}, [](const std::string&) {});
+    Posed posed{scene.model, {}};
+    const RobotModel& robot = scene.model->robot();
+    CheckScratch scratch = scene.model->makeScratch();
+    std::vector<double> q;
+    while (posed.poses.size() < 256) {
+      q.clear();
+      for (const Variable& v : robot.variables()) {
+        q.push_back(std::uniform_real_distribution<double>(v.lower, v.upper)(rng));
+      }
+      if (!scene.model->inCollision(q.data(), q.size(), Eigen::Isometry3d::Identity(),
+                                    CheckerPath::kFused, scratch)) {
+        posed.poses.push_back(scratch.robot);
+      }
+    }
+    scenes.push_back(std::move(posed));
+  }
+  // The links the validator asks about: those a joint moves.
+  const RobotModel& robot = scenes.front().model->robot();
+  const std::size_t links = static_cast<std::size_t>(robot.linkCount());
+  const auto bound = makeLinkMotionBound(robot, false, false);
+  std::vector<double> caps(links, 0.0);
+  for (int l : bound->geometryLinks()) {
+    for (int v = 0; v < robot.variableCount(); ++v) {
+      if (bound->lever(l, v) > 0) caps[static_cast<std::size_t>(l)] = 0.01 * state.range(0);
+    }
+  }
+  std::vector<double> per_link(links);
+  std::vector<CheckScratch> scratches;
+  for (const Posed& s : scenes) scratches.push_back(s.model->makeScratch());
+  std::size_t calls = 0;
+  for (auto _ : state) {
+    for (std::size_t k = 0; k < scenes.size(); ++k) {
+      for (RobotData& pose : scenes[k].poses) {
+        std::swap(scratches[k].robot, pose);
+        scenes[k].model->clearanceLowerBoundGridPerLink(scratches[k], caps.data(), 0.0,
+                                                        per_link.data());
+        benchmark::DoNotOptimize(per_link.data());
+        std::swap(scratches[k].robot, pose);
+        ++calls;
+      }
+    }
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(calls));  // states per second
+}
+BENCHMARK(BM_GridClearance)->Arg(100)->Arg(10)->ArgName("cap_cm")->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

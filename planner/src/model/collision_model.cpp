@@ -154,14 +154,14 @@ double OctreeCollisionModel::clearanceLowerBoundGrid(const CheckScratch& scratch
       const double voxels = std::sqrt((g - p).squaredNorm() + inside * inside);
       return voxels * voxel - s[3] - 1e-6;
     };
-    for (const detail::SphereGroup& group : lt.sphere_groups_L) {
+    for (const detail::SphereGroup& group : lt.grid_sphere_groups_L) {
       // The group's sphere holds its members: its bound is theirs too, and when it is no
       // lower than the best so far, they cannot lower it.
       const double outer = sphereClearance(group.sphere_L);
       if (outer >= best) continue;
       double members = std::numeric_limits<double>::infinity();
       for (std::size_t i = group.begin; i < group.end && members > outer; ++i) {
-        members = std::min(members, sphereClearance(lt.spheres_L[i]));
+        members = std::min(members, sphereClearance(lt.grid_spheres_L[i]));
       }
       best = std::min(best, std::max(outer, members));
       if (best <= 0) return 0.0;
@@ -219,8 +219,8 @@ void OctreeCollisionModel::clearanceLowerBoundGridPerLink(const CheckScratch& sc
     // bound for them (the result is then at least the cap, which decides the same).
     order.clear();
     double skipped = std::numeric_limits<double>::infinity();
-    for (std::size_t k = 0; k < lt.sphere_groups_L.size(); ++k) {
-      const Eigen::Vector4d& g = lt.sphere_groups_L[k].sphere_L;
+    for (std::size_t k = 0; k < lt.grid_sphere_groups_L.size(); ++k) {
+      const Eigen::Vector4d& g = lt.grid_sphere_groups_L[k].sphere_L;
       const double outer = sphereClearance(g.head<3>(), g[3]);
       if (outer >= cap) {
         skipped = std::min(skipped, outer);
@@ -232,10 +232,10 @@ void OctreeCollisionModel::clearanceLowerBoundGridPerLink(const CheckScratch& sc
     double best = std::numeric_limits<double>::infinity();
     for (const auto& [outer, k] : order) {
       if (outer >= best || best <= whole) break;  // no better than the bounding sphere's
-      const detail::SphereGroup& group = lt.sphere_groups_L[k];
+      const detail::SphereGroup& group = lt.grid_sphere_groups_L[k];
       double members = std::numeric_limits<double>::infinity();
       for (std::size_t i = group.begin; i < group.end && members > outer; ++i) {
-        const Eigen::Vector4d& s = lt.spheres_L[i];
+        const Eigen::Vector4d& s = lt.grid_spheres_L[i];
         members = std::min(members, sphereClearance(s.head<3>(), s[3]));
       }
       best = std::min(best, std::max(outer, members));

@@ -245,8 +245,7 @@ void CollisionModelBuilder::voxelizeLinks() {
       lr.self_source_bytes = lt.self_voxels->source.bytes();
     }
     const Octree& source = lt.voxels.source;
-    lt.spheres_L = clearanceSpheres(source);
-    lt.sphere_groups_L = groupClearanceSpheres(lt.spheres_L);
+    setClearanceSpheres(lt, options_.resolution);
     lr.source_internal_nodes = source.internalNodeCount();
     lr.source_black_leaves = source.blackLeafCount();
     lr.source_bytes = source.bytes();

@@ -17,9 +17,12 @@ namespace octomotion::detail {
 
 namespace {
 
-// Clearance spheres circumscribe the level-kSphereLevel cubes that hold black voxels: coarse
-// enough to be few, fine enough (8 voxels) to keep the bound useful.
-constexpr int kSphereLevel = 3;
+// Clearance spheres circumscribe cubes of kSphereVoxels voxels a side that hold black voxels:
+// coarse enough to be few, fine enough to keep the bound useful. The tree and point methods
+// count the link's voxels; the grid counts the environment's, which are coarser when the link
+// trees are finer: the grid is loose by a cell of four of them, so finer spheres would cost
+// more lookups per state and prove no more.
+constexpr double kSphereVoxels = 8;
 
 }  // namespace
 
@@ -87,9 +90,13 @@ LinkVoxels voxelizeLink(const Link& link, const std::vector<const TriangleMesh*>
   return v;
 }
 
-std::vector<Eigen::Vector4d> clearanceSpheres(const Octree& source) {
+std::vector<Eigen::Vector4d> clearanceSpheres(const Octree& source, double voxel) {
   const WorldGrid& grid = source.grid();
-  const int level = std::min(kSphereLevel, grid.depth());
+  int level = 0;
+  while (level < grid.depth() &&
+         std::ldexp(grid.voxelSize(), level) < kSphereVoxels * voxel * (1 - 1e-9)) {
+    ++level;
+  }
   std::vector<Cube> cells;
   source.forEachBlackLeaf([&](const Cube& c) {
     if (c.level >= level) {
@@ -153,6 +160,13 @@ std::vector<SphereGroup> groupClearanceSpheres(std::vector<Eigen::Vector4d>& sph
     begin = end;
   }
   return groups;
+}
+
+void setClearanceSpheres(LinkTree& lt, double environment_voxel) {
+  const Octree& source = lt.voxels.source;
+  lt.spheres_L = clearanceSpheres(source, source.grid().voxelSize());
+  lt.grid_spheres_L = clearanceSpheres(source, environment_voxel);
+  lt.grid_sphere_groups_L = groupClearanceSpheres(lt.grid_spheres_L);
 }
 
 EnvironmentLinkTest LinkModels::environmentTest(std::size_t slot, double environment_voxel,

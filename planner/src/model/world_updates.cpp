@@ -68,8 +68,7 @@ detail::LinkTree makeLinkTree(int robot_link, const Link& geometry,
     lt.self_voxels = std::make_unique<const detail::LinkVoxels>(detail::voxelizeLink(
         geometry, element_mesh, box_L, report.self_link_resolution, options, true));
   }
-  lt.spheres_L = detail::clearanceSpheres(lt.voxels.source);
-  lt.sphere_groups_L = detail::groupClearanceSpheres(lt.spheres_L);
+  detail::setClearanceSpheres(lt, options.resolution);
   return lt;
 }
 

@@ -50,8 +50,9 @@ LinkVoxels voxelizeLink(const Link& link, const std::vector<const TriangleMesh*>
                         Eigen::AlignedBox3d box_L, double resolution,
                         const CollisionModelOptions& options, bool for_self_pairs);
 
-// Clearance spheres of a link: they circumscribe the coarse ancestors of its black leaves.
-std::vector<Eigen::Vector4d> clearanceSpheres(const Octree& source);
+// Clearance spheres of a link: they circumscribe the coarse ancestors of its black leaves, cubes
+// of at least eight `voxel`s (metres) a side.
+std::vector<Eigen::Vector4d> clearanceSpheres(const Octree& source, double voxel);
 
 // A sphere holding the clearance spheres [begin, end) of a link: a grid clearance at its centre,
 // less its radius, bounds theirs from below, so a group whose bound is no lower than the best
@@ -73,9 +74,15 @@ struct LinkTree {
   const LinkVoxels& forSelf() const { return self_voxels ? *self_voxels : voxels; }
   bool touches_environment = true;  // false: cannot reach the modelled environment
   bool folded = false;  // its pose is constant: tested against the environment at build time
-  std::vector<Eigen::Vector4d> spheres_L;    // coarse cover of the black voxels (clearance)
-  std::vector<SphereGroup> sphere_groups_L;  // spheres_L in groups (groupClearanceSpheres)
+  // Covers of the black voxels for the clearance bounds: by cubes of eight link voxels (the
+  // tree and point methods), and by cubes of eight environment voxels, in groups
+  // (groupClearanceSpheres), for the ClearanceGrid.
+  std::vector<Eigen::Vector4d> spheres_L;
+  std::vector<Eigen::Vector4d> grid_spheres_L;
+  std::vector<SphereGroup> grid_sphere_groups_L;
 };
+// Sets lt's clearance spheres (both covers, and the grid's groups) from its link voxels.
+void setClearanceSpheres(LinkTree& lt, double environment_voxel);
 
 // What the environment pre-test reads of a link, in one flat record per link that can touch
 // the environment (a rejected link touches nothing else).
