@@ -12,8 +12,10 @@
 // ../shared/data/panda.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <filesystem>
+#include <random>
 #include <string>
 #include <variant>
 #include <vector>
@@ -91,6 +93,58 @@ TEST(RefineSelfContact, CertainContactsWithPrimitiveElementsAreFclContacts) {
     ASSERT_TRUE(primitive_element && mesh_element) << "the arm no longer mixes element kinds";
     expectCertainSelfContactsAreFcl(robot, 0x0c70);
   }
+}
+
+// Each thread orders a pair's two exact tests by the pair's recent verdicts (a pair mostly in
+// contact tries the certain contact before the hulls). Along random walks (a planner's nearby
+// states) a pair's verdicts come in runs, so both orders serve on every pair that turns from
+// free to contact and back: the answers stay FCL's on every state, in both orders.
+void expectAdaptiveOrderKeepsFclAnswers(const RobotModel& robot, std::uint64_t seed) {
+  const EnvironmentGeometry none = EnvironmentGeometry::load({});
+  CollisionModelOptions options;
+  options.refine = RefineMode::kExact;
+  const OctreeCollisionModel model(robot, none, options);
+  const FclCollisionModel fcl(robot, none);
+  auto exact = fcl.makeScratch();
+  CheckScratch scratch = model.makeScratch();
+  std::mt19937_64 rng(seed);
+  std::size_t contacts = 0, disagreements = 0;
+  for (std::vector<double> q : test::uniformJointStates(robot, 150, seed)) {
+    for (int step = 0; step < 20; ++step) {
+      for (std::size_t j = 0; j < q.size(); ++j) {
+        const Variable& v = robot.variables()[j];
+        const double range = v.upper - v.lower;
+        q[j] = std::clamp(q[j] + std::normal_distribution<double>(0, 0.05 * range)(rng), v.lower,
+                          v.upper);
+      }
+      fcl.setConfiguration(q.data(), q.size(), Eigen::Isometry3d::Identity(), *exact);
+      const bool truth = fcl.selfInCollision(*exact);
+      contacts += truth;
+      disagreements += model.inCollision(q.data(), q.size(), Eigen::Isometry3d::Identity(),
+                                         CheckerPath::kFused, scratch) != truth;
+    }
+  }
+  EXPECT_EQ(disagreements, 0u);
+  EXPECT_GT(contacts, 300u);
+  EXPECT_GT(model.refineCounts(scratch).certain_self_contacts, contacts / 2);
+  EXPECT_GT(model.refineCounts(scratch).hull_apart_pairs, 300u);
+}
+
+TEST(RefineSelfContact, AdaptiveTestOrderKeepsFclAnswers) {
+  const std::string source = OCTOMOTION_SOURCE_DIR;
+  {
+    SCOPED_TRACE("octo6");
+    RobotModelOptions options;
+    options.package_paths = {source};
+    RobotModel robot = RobotModel::fromUrdfFile(source + "/robots/octo6/octo6.urdf", options);
+    robot.loadSrdfFile(source + "/robots/octo6/octo6.srdf");
+    expectAdaptiveOrderKeepsFclAnswers(robot, 0xada6);
+  }
+  if (!std::filesystem::exists(kPanda + "/panda.urdf")) GTEST_SKIP() << "no Panda";
+  SCOPED_TRACE("Panda");
+  RobotModel robot = RobotModel::fromUrdfFile(kPanda + "/panda.urdf");
+  robot.loadSrdfFile(kPanda + "/panda.srdf");
+  expectAdaptiveOrderKeepsFclAnswers(robot, 0xada7);
 }
 
 TEST(RefineSelfContact, LinksClearedByObjectHullsAreFreeForFcl) {

@@ -381,15 +381,26 @@ bool selfOctreePass(const CollisionModelParts& parts, const RefineData& data, Re
   const std::vector<SelfPair>& pairs = parts.self.pairs;
   r.uncertain_pairs.clear();
   r.pair_directions.resize(pairs.size(), Eigen::Vector3d::Zero());
+  r.pair_verdicts.resize(pairs.size());
   return parts.self.confirmedInCollision(
       links, path, scratch,
       [&](std::size_t i) {
         const int a = links.links[pairs[i].a].link, b = links.links[pairs[i].b].link;
+        PairVerdictCounts& seen = r.pair_verdicts[i];
+        // A pair mostly in contact lately: its hulls would not be apart.
+        const bool contact_first = seen.contactFirst();
+        if (contact_first && certainPairContact(data, scratch.robot, a, b)) {
+          seen.add(true);
+          ++r.counts.certain_self_contacts;
+          return Verdict::kContact;
+        }
         if (refineHullsApart(data, scratch.robot, a, b, r.pair_directions[i])) {
+          seen.add(false);
           ++r.counts.hull_apart_pairs;
           return Verdict::kFree;
         }
-        if (certainPairContact(data, scratch.robot, a, b)) {
+        if (!contact_first && certainPairContact(data, scratch.robot, a, b)) {
+          seen.add(true);
           ++r.counts.certain_self_contacts;
           return Verdict::kContact;
         }

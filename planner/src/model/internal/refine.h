@@ -113,6 +113,24 @@ struct RefineData {
 // far below any gap that matters.
 inline constexpr double kHullGap = 1e-5;
 
+// A self pair's recent verdicts from its exact tests: hulls apart, certain contact. The counts
+// halve when their sum reaches kWindow, so they follow the states a thread checks now (a
+// planner's nearby states), and a pair mostly in contact tries the certain-contact test before
+// the hulls' (which cannot clear it).
+struct PairVerdictCounts {
+  static constexpr std::uint8_t kWindow = 32;
+  std::uint8_t apart = 0;
+  std::uint8_t contact = 0;
+  bool contactFirst() const { return contact > apart; }
+  void add(bool in_contact) {
+    ++(in_contact ? contact : apart);
+    if (apart + contact >= kWindow) {
+      apart /= 2;
+      contact /= 2;
+    }
+  }
+};
+
 struct RefineScratch {
   std::uint64_t owner = 0;  // id() of the model it was made for
   fcl_internal::RobotScratch fcl;
@@ -127,6 +145,9 @@ struct RefineScratch {
   // Per self pair (SelfCollision::pairs): the last direction that separated its hulls, tried
   // first (a planner's nearby states are often separated the same way).
   std::vector<Eigen::Vector3d> pair_directions;
+  // Per self pair: its recent verdicts when its links' boxes meet, to order its two exact tests
+  // (selfOctreePass). Both are sound, so the order changes the time, not the answer.
+  std::vector<PairVerdictCounts> pair_verdicts;
   std::vector<char> object_apart;  // refineLinkHits' per-object hull verdicts
   RefineCounts counts;
   // Distances for the certified motion validator (refine_clearance.cpp): link-object and
