@@ -67,10 +67,23 @@ inline constexpr std::size_t kWitnessPoints = 24;
 // on the inner side) and, per face, the largest n . v over the vertices (the hull's extent
 // along n); empty otherwise.
 struct ClosedLinkMesh {
+  // Nearby vertices, contiguous in vertices_L: [begin, end) within `radius` of `centre_L`, so
+  // the searches for the vertex nearest or farthest from a point skip most clusters.
+  struct Cluster {
+    Eigen::Vector3d centre_L;
+    double radius = 0;
+    std::uint32_t begin = 0, end = 0;
+  };
   std::vector<Eigen::Vector3d> vertices_L;
+  std::vector<Cluster> clusters;
   std::vector<Eigen::Vector4d> planes_L;
   std::vector<double> supports_L;
   Eigen::Vector3d centroid_L = Eigen::Vector3d::Zero();  // of the vertices
+  // Shortcuts past the planes: the box of the vertices (a point outside it is outside the
+  // solid), and a box whose points all lie kCertainDepth inside every face plane (empty when
+  // the centroid does not).
+  Eigen::AlignedBox3d box_L;
+  Eigen::AlignedBox3d inner_box_L;
   bool empty() const { return planes_L.empty(); }
 };
 
