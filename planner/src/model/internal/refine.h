@@ -144,6 +144,23 @@ struct PairVerdictCounts {
   }
 };
 
+// Which half of recent checks found their contact: the environment's or the self pairs'. Halved
+// when the sum reaches kWindow; the half that found more contacts runs first
+// (refinedLinksInCollision), so a contact found there spares the other half's octree pass.
+struct HalfContactCounts {
+  static constexpr std::uint8_t kWindow = 32;
+  std::uint8_t environment = 0;
+  std::uint8_t self = 0;
+  bool selfFirst() const { return self > environment; }
+  void add(bool in_self) {
+    ++(in_self ? self : environment);
+    if (environment + self >= kWindow) {
+      environment /= 2;
+      self /= 2;
+    }
+  }
+};
+
 struct RefineScratch {
   std::uint64_t owner = 0;  // id() of the model it was made for
   fcl_internal::RobotScratch fcl;
@@ -161,6 +178,7 @@ struct RefineScratch {
   // Per self pair: its recent verdicts when its links' boxes meet, to order its two exact tests
   // (selfOctreePass). Both are sound, so the order changes the time, not the answer.
   std::vector<PairVerdictCounts> pair_verdicts;
+  HalfContactCounts half_contacts;
   std::vector<char> object_apart;  // refineLinkHits' per-object hull verdicts
   RefineCounts counts;
   // Distances for the certified motion validator (refine_clearance.cpp): link-object and
