@@ -389,6 +389,10 @@ bool pointInside(const SelfContactElement& element, const SelfContactElement& pr
   if (element.points_L.empty()) return false;
   const Eigen::Isometry3d X_PE = primitive.X_EL * X_PL_EL;  // element's L to the primitive's E
   const Eigen::Vector3d c_L = X_PE.inverse().translation();
+  // A closed mesh's vertices are its points, in clusters.
+  if (!element.mesh.empty()) {
+    return deepInside(*primitive.primitive, X_PE * extremeVertex(element.mesh, c_L, false));
+  }
   std::size_t nearest = 0;
   double near2 = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < element.points_L.size(); ++i) {
