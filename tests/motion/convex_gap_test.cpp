@@ -193,6 +193,36 @@ TEST(ConvexGap, ClimbFindsTheSupportOnAConvexMesh) {
   }
 }
 
+// Large sets are searched cluster by cluster (a cluster whose bound cannot beat the best point is
+// skipped): the support value is still the highest over every given point, for sets of a few to
+// thousands of points, spread out or in tight clumps with repeated points, in any direction.
+TEST(ConvexGap, SupportIsTheHighestOfEveryPoint) {
+  std::mt19937_64 rng(0x5099);
+  std::normal_distribution<double> n(0.0, 1.0);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (int set = 0; set < 60; ++set) {
+    const auto count = static_cast<std::size_t>(5 + 3000 * u(rng) * u(rng));
+    const double clump = u(rng) < 0.5 ? 1e-6 : 1.0;
+    std::vector<Eigen::Vector3d> points;
+    for (std::size_t i = 0; i < count; ++i) {
+      if (i > 0 && u(rng) < 0.1) {
+        points.push_back(points[static_cast<std::size_t>(u(rng) * static_cast<double>(i))]);
+      } else {
+        points.emplace_back(Eigen::Vector3d(n(rng), n(rng), n(rng)) * clump +
+                            Eigen::Vector3d(3 * std::floor(4 * u(rng)), 0, 0));
+      }
+    }
+    const ConvexPoints hull(points);
+    for (int k = 0; k < 100; ++k) {
+      const Eigen::Vector3d d(n(rng), n(rng), n(rng));
+      double highest = -std::numeric_limits<double>::infinity();
+      for (const Eigen::Vector3d& p : points) highest = std::max(highest, d.dot(p));
+      EXPECT_NEAR(d.dot(hull.point(hull.supportIndex(d))), highest,
+                  1e-12 * (1 + std::abs(highest)));
+    }
+  }
+}
+
 // Edges only guide the search: on non-convex meshes, where a climb can stop short, every
 // "apart" still has its separating direction, and convex meshes across a slab are found apart.
 TEST(ConvexGap, EdgesChangeNoAnswer) {

@@ -12,8 +12,10 @@
 // ../shared/data/panda.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <filesystem>
+#include <random>
 #include <string>
 #include <variant>
 #include <vector>
@@ -93,10 +95,8 @@ TEST(RefineSelfContact, CertainContactsWithPrimitiveElementsAreFclContacts) {
   }
 }
 
-TEST(RefineSelfContact, LinksClearedByObjectHullsAreFreeForFcl) {
-  if (!std::filesystem::exists(kPanda + "/panda.urdf")) GTEST_SKIP() << "no Panda";
-  RobotModel robot = RobotModel::fromUrdfFile(kPanda + "/panda.urdf");
-  robot.loadSrdfFile(kPanda + "/panda.srdf");
+// A box, a cylinder and a ball around a fixed-base arm's base.
+EnvironmentGeometry obstaclesAroundTheBase() {
   std::vector<EnvironmentObject> objects(3);
   objects[0].primitive = Box{Eigen::Vector3d(0.15, 0.3, 0.02)};
   objects[0].X_WO =
@@ -107,7 +107,72 @@ TEST(RefineSelfContact, LinksClearedByObjectHullsAreFreeForFcl) {
   objects[2].primitive = Sphere{0.12};
   objects[2].X_WO.translation() = Eigen::Vector3d(0.1, -0.45, 0.7);
   for (std::size_t i = 0; i < objects.size(); ++i) objects[i].name = "o" + std::to_string(i);
-  const EnvironmentGeometry environment = EnvironmentGeometry::load(objects);
+  return EnvironmentGeometry::load(objects);
+}
+
+// Each thread orders a pair's two exact tests by the pair's recent verdicts (a pair mostly in
+// contact tries the certain contact before the hulls), and the check's two halves by which one
+// found recent contacts. Along random walks (a planner's nearby states) verdicts come in runs, so
+// the orders change as pairs and links turn from free to contact and back: the answers stay
+// FCL's on every state, with contacts in both halves.
+void expectAdaptiveOrdersKeepFclAnswers(const RobotModel& robot, std::uint64_t seed) {
+  const EnvironmentGeometry obstacles = obstaclesAroundTheBase();
+  CollisionModelOptions options;
+  options.refine = RefineMode::kExact;
+  const OctreeCollisionModel model(robot, obstacles, options);
+  const FclCollisionModel fcl(robot, obstacles);
+  auto exact = fcl.makeScratch();
+  CheckScratch scratch = model.makeScratch();
+  std::mt19937_64 rng(seed);
+  std::size_t self_contacts = 0, environment_contacts = 0, disagreements = 0;
+  for (std::vector<double> q : test::uniformJointStates(robot, 150, seed)) {
+    for (int step = 0; step < 20; ++step) {
+      for (std::size_t j = 0; j < q.size(); ++j) {
+        const Variable& v = robot.variables()[j];
+        const double range = v.upper - v.lower;
+        q[j] = std::clamp(q[j] + std::normal_distribution<double>(0, 0.05 * range)(rng), v.lower,
+                          v.upper);
+      }
+      fcl.setConfiguration(q.data(), q.size(), Eigen::Isometry3d::Identity(), *exact);
+      const bool in_self = fcl.selfInCollision(*exact);
+      const bool in_environment = fcl.environmentInCollision(*exact);
+      self_contacts += in_self;
+      environment_contacts += in_environment;
+      disagreements +=
+          model.inCollision(q.data(), q.size(), Eigen::Isometry3d::Identity(), CheckerPath::kFused,
+                            scratch) != (in_self || in_environment);
+    }
+  }
+  EXPECT_EQ(disagreements, 0u);
+  EXPECT_GT(self_contacts, 300u);
+  EXPECT_GT(environment_contacts, 100u);
+  EXPECT_GT(model.refineCounts(scratch).certain_self_contacts, 100u);
+  EXPECT_GT(model.refineCounts(scratch).certain_contacts, 50u);
+  EXPECT_GT(model.refineCounts(scratch).hull_apart_pairs, 300u);
+}
+
+TEST(RefineSelfContact, AdaptiveTestOrdersKeepFclAnswers) {
+  const std::string source = OCTOMOTION_SOURCE_DIR;
+  {
+    SCOPED_TRACE("octo6");
+    RobotModelOptions options;
+    options.package_paths = {source};
+    RobotModel robot = RobotModel::fromUrdfFile(source + "/robots/octo6/octo6.urdf", options);
+    robot.loadSrdfFile(source + "/robots/octo6/octo6.srdf");
+    expectAdaptiveOrdersKeepFclAnswers(robot, 0xada6);
+  }
+  if (!std::filesystem::exists(kPanda + "/panda.urdf")) GTEST_SKIP() << "no Panda";
+  SCOPED_TRACE("Panda");
+  RobotModel robot = RobotModel::fromUrdfFile(kPanda + "/panda.urdf");
+  robot.loadSrdfFile(kPanda + "/panda.srdf");
+  expectAdaptiveOrdersKeepFclAnswers(robot, 0xada7);
+}
+
+TEST(RefineSelfContact, LinksClearedByObjectHullsAreFreeForFcl) {
+  if (!std::filesystem::exists(kPanda + "/panda.urdf")) GTEST_SKIP() << "no Panda";
+  RobotModel robot = RobotModel::fromUrdfFile(kPanda + "/panda.urdf");
+  robot.loadSrdfFile(kPanda + "/panda.srdf");
+  const EnvironmentGeometry environment = obstaclesAroundTheBase();
   CollisionModelOptions options;
   options.refine = RefineMode::kExact;
   const OctreeCollisionModel model(robot, environment, options);

@@ -4,6 +4,8 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <utility>
+#include <vector>
 
 #include "octomotion/error.h"
 
@@ -11,28 +13,81 @@ namespace octomotion {
 
 ConvexPoints::ConvexPoints(const std::vector<Eigen::Vector3d>& points, double radius)
     : radius_(radius) {
+  store(points);
+}
+
+namespace {
+
+// Point sets larger than this are split into clusters of at most kClusterPoints.
+constexpr std::size_t kClusteredFrom = 64;
+constexpr std::size_t kClusterPoints = 16;
+
+}  // namespace
+
+std::vector<std::uint32_t> ConvexPoints::store(const std::vector<Eigen::Vector3d>& points) {
   if (points.empty()) throw InvalidArgument("ConvexPoints: no points");
-  if (!(radius >= 0) || !std::isfinite(radius)) {
+  if (!(radius_ >= 0) || !std::isfinite(radius_)) {
     throw InvalidArgument("ConvexPoints: the radius must be finite and >= 0");
   }
-  x_.reserve(points.size());
-  y_.reserve(points.size());
-  z_.reserve(points.size());
   for (const Eigen::Vector3d& p : points) {
     if (!p.allFinite()) throw InvalidArgument("ConvexPoints: a point is not finite");
-    x_.push_back(p.x());
-    y_.push_back(p.y());
-    z_.push_back(p.z());
     centroid_ += p;
   }
   centroid_ /= static_cast<double>(points.size());
   for (const Eigen::Vector3d& p : points) reach_ = std::max(reach_, (p - centroid_).norm());
+  // order[k]: the given index of stored point k; clusters split at the median along the longest
+  // side of their box.
+  std::vector<std::uint32_t> order(points.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<std::uint32_t>(i);
+  if (points.size() >= kClusteredFrom) {
+    std::vector<std::pair<std::size_t, std::size_t>> todo = {{0, order.size()}};
+    while (!todo.empty()) {
+      const auto [begin, end] = todo.back();
+      todo.pop_back();
+      Eigen::AlignedBox3d box;
+      for (std::size_t k = begin; k < end; ++k) box.extend(points[order[k]]);
+      if (end - begin > kClusterPoints) {
+        Eigen::Index axis = 0;
+        box.sizes().maxCoeff(&axis);
+        const std::size_t middle = begin + (end - begin) / 2;
+        std::nth_element(
+            order.begin() + static_cast<std::ptrdiff_t>(begin),
+            order.begin() + static_cast<std::ptrdiff_t>(middle),
+            order.begin() + static_cast<std::ptrdiff_t>(end),
+            [&](std::uint32_t a, std::uint32_t b) { return points[a][axis] < points[b][axis]; });
+        todo.emplace_back(begin, middle);
+        todo.emplace_back(middle, end);
+        continue;
+      }
+      Cluster cluster{box.center(), 0, static_cast<std::uint32_t>(begin),
+                      static_cast<std::uint32_t>(end)};
+      for (std::size_t k = begin; k < end; ++k) {
+        cluster.radius = std::max(cluster.radius, (points[order[k]] - cluster.centre).norm());
+      }
+      // Far above rounding in the bound, so no skipped cluster holds a higher point.
+      cluster.radius += 1e-12 * (cluster.radius + cluster.centre.norm());
+      clusters_.push_back(cluster);
+    }
+  }
+  x_.reserve(points.size());
+  y_.reserve(points.size());
+  z_.reserve(points.size());
+  std::vector<std::uint32_t> index(points.size());
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    const Eigen::Vector3d& p = points[order[k]];
+    x_.push_back(p.x());
+    y_.push_back(p.y());
+    z_.push_back(p.z());
+    index[order[k]] = static_cast<std::uint32_t>(k);
+  }
+  return index;
 }
 
 ConvexPoints::ConvexPoints(const std::vector<Eigen::Vector3d>& points,
                            const std::vector<std::array<std::uint32_t, 3>>& triangles,
                            double radius)
-    : ConvexPoints(points, radius) {
+    : radius_(radius) {
+  const std::vector<std::uint32_t> index = store(points);
   std::vector<std::vector<std::uint32_t>> adjacent(points.size());
   for (const auto& t : triangles) {
     for (int k = 0; k < 3; ++k) {
@@ -42,8 +97,8 @@ ConvexPoints::ConvexPoints(const std::vector<Eigen::Vector3d>& points,
         throw InvalidArgument("ConvexPoints: a triangle's index is out of range");
       }
       if (i == j) continue;
-      adjacent[i].push_back(j);
-      adjacent[j].push_back(i);
+      adjacent[index[i]].push_back(index[j]);
+      adjacent[index[j]].push_back(index[i]);
     }
   }
   if (triangles.empty()) return;
@@ -91,16 +146,41 @@ std::size_t ConvexPoints::climbSupport(const Eigen::Vector3d& d) const {
   }
 }
 
-std::size_t ConvexPoints::supportIndex(const Eigen::Vector3d& d) const {
+std::size_t ConvexPoints::supportIndexIn(const Eigen::Vector3d& d, std::size_t begin,
+                                         std::size_t end, double& value) const {
   const double dx = d.x(), dy = d.y(), dz = d.z();
-  std::size_t best = 0;
-  double best_value = -std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i < x_.size(); ++i) {
-    const double value = x_[i] * dx + y_[i] * dy + z_[i] * dz;
-    if (value > best_value) {
-      best_value = value;
+  std::size_t best = begin;
+  for (std::size_t i = begin; i < end; ++i) {
+    const double v = x_[i] * dx + y_[i] * dy + z_[i] * dz;
+    if (v > value) {
+      value = v;
       best = i;
     }
+  }
+  return best;
+}
+
+std::size_t ConvexPoints::supportIndex(const Eigen::Vector3d& d) const {
+  double value = -std::numeric_limits<double>::infinity();
+  if (clusters_.empty()) return supportIndexIn(d, 0, x_.size(), value);
+  // The cluster whose centre is highest first: its best point makes most bounds fall short.
+  std::size_t start = 0;
+  double start_value = -std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < clusters_.size(); ++k) {
+    const double v = d.dot(clusters_[k].centre);
+    if (v > start_value) {
+      start_value = v;
+      start = k;
+    }
+  }
+  std::size_t best = supportIndexIn(d, clusters_[start].begin, clusters_[start].end, value);
+  const double norm = d.norm();
+  for (std::size_t k = 0; k < clusters_.size(); ++k) {
+    const Cluster& c = clusters_[k];
+    if (k == start || d.dot(c.centre) + norm * c.radius <= value) continue;
+    const double before = value;
+    const std::size_t i = supportIndexIn(d, c.begin, c.end, value);
+    if (value > before) best = i;
   }
   return best;
 }

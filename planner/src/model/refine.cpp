@@ -381,15 +381,26 @@ bool selfOctreePass(const CollisionModelParts& parts, const RefineData& data, Re
   const std::vector<SelfPair>& pairs = parts.self.pairs;
   r.uncertain_pairs.clear();
   r.pair_directions.resize(pairs.size(), Eigen::Vector3d::Zero());
+  r.pair_verdicts.resize(pairs.size());
   return parts.self.confirmedInCollision(
       links, path, scratch,
       [&](std::size_t i) {
         const int a = links.links[pairs[i].a].link, b = links.links[pairs[i].b].link;
+        PairVerdictCounts& seen = r.pair_verdicts[i];
+        // A pair mostly in contact lately: its hulls would not be apart.
+        const bool contact_first = seen.contactFirst();
+        if (contact_first && certainPairContact(data, scratch.robot, a, b)) {
+          seen.add(true);
+          ++r.counts.certain_self_contacts;
+          return Verdict::kContact;
+        }
         if (refineHullsApart(data, scratch.robot, a, b, r.pair_directions[i])) {
+          seen.add(false);
           ++r.counts.hull_apart_pairs;
           return Verdict::kFree;
         }
-        if (certainPairContact(data, scratch.robot, a, b)) {
+        if (!contact_first && certainPairContact(data, scratch.robot, a, b)) {
+          seen.add(true);
           ++r.counts.certain_self_contacts;
           return Verdict::kContact;
         }
@@ -439,17 +450,30 @@ bool OctreeCollisionModel::refinedSelfInCollision(CheckerPath path, CheckScratch
          detail::refineUncertainPairsHit(*refine_, r, scratch.robot);
 }
 
-// The two halves in one query, so a link's FCL objects are posed once. The environment's FCL
-// tests come before the self pass: the self pass certifies no contact, so a contact FCL finds
-// there first spares it.
+// The two halves in one query, so a link's FCL objects are posed once. FCL runs after both
+// octree passes found no certain contact, the environment's links before the self pairs. The
+// half that recently found more contacts makes its octree pass first (HalfContactCounts): a
+// certain contact there spares the other half's pass. Every test is sound, so the order changes
+// the time, not the answer.
 bool OctreeCollisionModel::refinedLinksInCollision(CheckerPath path, CheckScratch& scratch) const {
   detail::RefineScratch& r = detail::refineScratch(*refine_, robot_, id_, scratch.refine);
-  if (detail::environmentOctreePass(*parts_, *refine_, r, path, scratch) ||
-      detail::refineUncertainLinksHit(*refine_, r, scratch.robot)) {
+  auto found = [&](bool in_self) {
+    r.half_contacts.add(in_self);
     return true;
+  };
+  if (r.half_contacts.selfFirst()) {
+    if (detail::selfOctreePass(*parts_, *refine_, r, path, scratch)) return found(true);
+    if (detail::environmentOctreePass(*parts_, *refine_, r, path, scratch)) return found(false);
+  } else {
+    if (detail::environmentOctreePass(*parts_, *refine_, r, path, scratch)) return found(false);
+    // The environment's FCL tests before the self pass: a contact FCL finds there spares it.
+    if (detail::refineUncertainLinksHit(*refine_, r, scratch.robot)) return found(false);
+    r.uncertain_links.clear();
+    if (detail::selfOctreePass(*parts_, *refine_, r, path, scratch)) return found(true);
   }
-  return detail::selfOctreePass(*parts_, *refine_, r, path, scratch) ||
-         detail::refineUncertainPairsHit(*refine_, r, scratch.robot);
+  if (detail::refineUncertainLinksHit(*refine_, r, scratch.robot)) return found(false);
+  if (detail::refineUncertainPairsHit(*refine_, r, scratch.robot)) return found(true);
+  return false;
 }
 
 RefineCounts OctreeCollisionModel::refineCounts(const CheckScratch& scratch) const {

@@ -115,12 +115,69 @@ bool deepInsidePlanes(const std::vector<Eigen::Vector4d>& planes, const Eigen::V
   return true;
 }
 
-// p lies kCertainDepth beyond the mesh's vertices along a face normal, so outside its hull.
+// deepInsidePlanes on the mesh's planes, with its boxes answering first where they can.
+bool deepInsideMesh(const ClosedLinkMesh& mesh, const Eigen::Vector3d& p) {
+  if (!mesh.box_L.contains(p)) return false;
+  if (mesh.inner_box_L.contains(p)) return true;
+  return deepInsidePlanes(mesh.planes_L, p);
+}
+
+// p lies kCertainDepth beyond the mesh's vertices along a face normal or an axis (outside the
+// vertices' box), so outside its hull.
 bool deepOutsideHull(const ClosedLinkMesh& mesh, const Eigen::Vector3d& p) {
+  if ((mesh.box_L.min() - p).maxCoeff() >= kCertainDepth ||
+      (p - mesh.box_L.max()).maxCoeff() >= kCertainDepth) {
+    return true;
+  }
+  if (mesh.inner_box_L.contains(p)) return false;
   for (std::size_t f = 0; f < mesh.planes_L.size(); ++f) {
     if (mesh.planes_L[f].head<3>().dot(p) >= mesh.supports_L[f] + kCertainDepth) return true;
   }
   return false;
+}
+
+// The mesh's vertex nearest p (farthest from p when `farthest`), by its clusters: the one whose
+// centre is nearest (farthest) first, then only those that may hold a nearer (farther) vertex.
+const Eigen::Vector3d& extremeVertex(const ClosedLinkMesh& mesh, const Eigen::Vector3d& p,
+                                     bool farthest) {
+  const double sign = farthest ? -1 : 1;
+  std::size_t start = 0;
+  double start_key = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < mesh.clusters.size(); ++k) {
+    const double key = sign * (mesh.clusters[k].centre_L - p).squaredNorm();
+    if (key < start_key) {
+      start_key = key;
+      start = k;
+    }
+  }
+  std::size_t best = 0;
+  double best2 = farthest ? -1 : std::numeric_limits<double>::infinity();
+  auto scan = [&](const ClosedLinkMesh::Cluster& c) {
+    for (std::uint32_t i = c.begin; i < c.end; ++i) {
+      const double d2 = (mesh.vertices_L[i] - p).squaredNorm();
+      if (farthest ? d2 > best2 : d2 < best2) {
+        best2 = d2;
+        best = i;
+      }
+    }
+  };
+  scan(mesh.clusters[start]);
+  for (std::size_t k = 0; k < mesh.clusters.size(); ++k) {
+    if (k == start) continue;
+    const ClosedLinkMesh::Cluster& c = mesh.clusters[k];
+    const double centre2 = (c.centre_L - p).squaredNorm();
+    const double best_distance = std::sqrt(best2);
+    // Every vertex of c lies within [|centre - p| - radius, |centre - p| + radius] of p.
+    if (farthest) {
+      const double reach = best_distance - c.radius;
+      if (reach > 0 && centre2 < reach * reach) continue;
+    } else {
+      const double reach = best_distance + c.radius;
+      if (centre2 > reach * reach) continue;
+    }
+    scan(c);
+  }
+  return mesh.vertices_L[best];
 }
 
 // A vertex of `mover` (placed in `other`'s frame by X_OM) deep inside `other` and one deep
@@ -128,21 +185,43 @@ bool deepOutsideHull(const ClosedLinkMesh& mesh, const Eigen::Vector3d& p) {
 bool crosses(const ClosedLinkMesh& mover, const ClosedLinkMesh& other,
              const Eigen::Isometry3d& X_OM) {
   const Eigen::Vector3d c_M = X_OM.inverse() * other.centroid_L;
-  std::size_t nearest = 0, farthest = 0;
-  double near2 = std::numeric_limits<double>::infinity(), far2 = -1;
-  for (std::size_t i = 0; i < mover.vertices_L.size(); ++i) {
-    const double d2 = (mover.vertices_L[i] - c_M).squaredNorm();
-    if (d2 < near2) {
-      near2 = d2;
-      nearest = i;
+  return deepInsideMesh(other, X_OM * extremeVertex(mover, c_M, false)) &&
+         deepOutsideHull(other, X_OM * extremeVertex(mover, c_M, true));
+}
+
+// Splits the vertices into clusters of at most kClusterVertices at the median along the
+// longest side of their box, reordering them so each cluster is contiguous.
+constexpr std::size_t kClusterVertices = 16;
+void clusterVertices(ClosedLinkMesh& mesh) {
+  std::vector<Eigen::Vector3d>& v = mesh.vertices_L;
+  std::vector<std::pair<std::size_t, std::size_t>> todo = {{0, v.size()}};
+  while (!todo.empty()) {
+    const auto [begin, end] = todo.back();
+    todo.pop_back();
+    Eigen::AlignedBox3d box;
+    for (std::size_t i = begin; i < end; ++i) box.extend(v[i]);
+    if (end - begin > kClusterVertices) {
+      Eigen::Index axis = 0;
+      box.sizes().maxCoeff(&axis);
+      const std::size_t middle = begin + (end - begin) / 2;
+      std::nth_element(
+          v.begin() + static_cast<std::ptrdiff_t>(begin),
+          v.begin() + static_cast<std::ptrdiff_t>(middle),
+          v.begin() + static_cast<std::ptrdiff_t>(end),
+          [&](const Eigen::Vector3d& a, const Eigen::Vector3d& b) { return a[axis] < b[axis]; });
+      todo.emplace_back(begin, middle);
+      todo.emplace_back(middle, end);
+      continue;
     }
-    if (d2 > far2) {
-      far2 = d2;
-      farthest = i;
+    ClosedLinkMesh::Cluster cluster;
+    cluster.centre_L = box.center();
+    for (std::size_t i = begin; i < end; ++i) {
+      cluster.radius = std::max(cluster.radius, (v[i] - cluster.centre_L).norm());
     }
+    cluster.begin = static_cast<std::uint32_t>(begin);
+    cluster.end = static_cast<std::uint32_t>(end);
+    mesh.clusters.push_back(cluster);
   }
-  return deepInsidePlanes(other.planes_L, X_OM * mover.vertices_L[nearest]) &&
-         deepOutsideHull(other, X_OM * mover.vertices_L[farthest]);
 }
 
 // The primitive's solid shrunk by kCertainDepth (its points at least that deep), or nothing when
@@ -177,6 +256,34 @@ Eigen::Vector3d closestPoint(const Primitive& shape, const Eigen::Vector3d& p_P)
   const double radial = q.head<2>().norm();
   if (radial > c.radius) q.head<2>() *= c.radius / radial;
   return q;
+}
+
+// The vertices' box shrunk about the centroid until its corners, so all its points (the region
+// inside every face plane is convex), lie kCertainDepth inside every face plane; empty when the
+// centroid does not.
+Eigen::AlignedBox3d innerBox(const ClosedLinkMesh& mesh) {
+  const Eigen::Vector3d c = mesh.centroid_L;
+  auto boxAt = [&](double scale) {
+    return Eigen::AlignedBox3d(c + scale * (mesh.box_L.min() - c),
+                               c + scale * (mesh.box_L.max() - c));
+  };
+  auto inside = [&](const Eigen::AlignedBox3d& box) {
+    for (int k = 0; k < 8; ++k) {
+      if (!deepInsidePlanes(mesh.planes_L,
+                            box.corner(static_cast<Eigen::AlignedBox3d::CornerType>(k)))) {
+        return false;
+      }
+    }
+    return true;
+  };
+  if (!deepInsidePlanes(mesh.planes_L, c)) return {};
+  double in = 0, out = 1;
+  if (inside(boxAt(out))) return boxAt(out);
+  for (int i = 0; i < 30; ++i) {
+    const double middle = (in + out) / 2;
+    (inside(boxAt(middle)) ? in : out) = middle;
+  }
+  return boxAt(in);
 }
 
 }  // namespace
@@ -222,7 +329,7 @@ bool closedMeshCrossesPrimitive(const ClosedLinkMesh& mesh, const DeepPoints& de
   if (!deep.core) return false;
   const Eigen::Isometry3d X_MP = X_PM.inverse();
   const Eigen::Vector3d q_M = X_MP * closestPoint(*deep.core, X_PM * mesh.centroid_L);
-  if (!deepInsidePlanes(mesh.planes_L, q_M)) return false;
+  if (!deepInsideMesh(mesh, q_M)) return false;
   for (const Eigen::Vector3d& p_P : deep.points) {
     if (deepOutsideHull(mesh, X_MP * p_P)) return true;
   }
@@ -265,6 +372,9 @@ std::vector<SelfContactElement> selfContactElements(
         }
         closed.supports_L.push_back(support);
       }
+      for (const Eigen::Vector3d& v : mesh.vertices_L) closed.box_L.extend(v);
+      closed.inner_box_L = innerBox(closed);
+      clusterVertices(closed);
     }
   }
   return elements;
@@ -279,6 +389,10 @@ bool pointInside(const SelfContactElement& element, const SelfContactElement& pr
   if (element.points_L.empty()) return false;
   const Eigen::Isometry3d X_PE = primitive.X_EL * X_PL_EL;  // element's L to the primitive's E
   const Eigen::Vector3d c_L = X_PE.inverse().translation();
+  // A closed mesh's vertices are its points, in clusters.
+  if (!element.mesh.empty()) {
+    return deepInside(*primitive.primitive, X_PE * extremeVertex(element.mesh, c_L, false));
+  }
   std::size_t nearest = 0;
   double near2 = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < element.points_L.size(); ++i) {

@@ -48,6 +48,19 @@ class ConvexPoints {
 
  private:
   std::vector<double> x_, y_, z_;  // split by coordinate: the support loop vectorises
+  // Many points come in clusters of nearby ones, contiguous in x_, y_, z_ ([begin, end) within
+  // `radius` of `centre`): supportIndex skips a cluster whose bound d . centre + |d| radius
+  // cannot beat the best point found.
+  struct Cluster {
+    Eigen::Vector3d centre;
+    double radius;
+    std::uint32_t begin, end;
+  };
+  std::vector<Cluster> clusters_;
+  // Stores the points, clustered when many; returns each given point's index.
+  std::vector<std::uint32_t> store(const std::vector<Eigen::Vector3d>& points);
+  std::size_t supportIndexIn(const Eigen::Vector3d& d, std::size_t begin, std::size_t end,
+                             double& value) const;
   // Neighbours of point i: neighbours_[first_[i] .. first_[i + 1]).
   std::vector<std::uint32_t> first_, neighbours_;
   // With edges: the support point of each of the 26 directions with components in {-1, 0, 1},

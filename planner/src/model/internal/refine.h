@@ -67,10 +67,23 @@ inline constexpr std::size_t kWitnessPoints = 24;
 // on the inner side) and, per face, the largest n . v over the vertices (the hull's extent
 // along n); empty otherwise.
 struct ClosedLinkMesh {
+  // Nearby vertices, contiguous in vertices_L: [begin, end) within `radius` of `centre_L`, so
+  // the searches for the vertex nearest or farthest from a point skip most clusters.
+  struct Cluster {
+    Eigen::Vector3d centre_L;
+    double radius = 0;
+    std::uint32_t begin = 0, end = 0;
+  };
   std::vector<Eigen::Vector3d> vertices_L;
+  std::vector<Cluster> clusters;
   std::vector<Eigen::Vector4d> planes_L;
   std::vector<double> supports_L;
   Eigen::Vector3d centroid_L = Eigen::Vector3d::Zero();  // of the vertices
+  // Shortcuts past the planes: the box of the vertices (a point outside it is outside the
+  // solid), and a box whose points all lie kCertainDepth inside every face plane (empty when
+  // the centroid does not).
+  Eigen::AlignedBox3d box_L;
+  Eigen::AlignedBox3d inner_box_L;
   bool empty() const { return planes_L.empty(); }
 };
 
@@ -113,6 +126,41 @@ struct RefineData {
 // far below any gap that matters.
 inline constexpr double kHullGap = 1e-5;
 
+// A self pair's recent verdicts from its exact tests: hulls apart, certain contact. The counts
+// halve when their sum reaches kWindow, so they follow the states a thread checks now (a
+// planner's nearby states), and a pair mostly in contact tries the certain-contact test before
+// the hulls' (which cannot clear it).
+struct PairVerdictCounts {
+  static constexpr std::uint8_t kWindow = 32;
+  std::uint8_t apart = 0;
+  std::uint8_t contact = 0;
+  bool contactFirst() const { return contact > apart; }
+  void add(bool in_contact) {
+    ++(in_contact ? contact : apart);
+    if (apart + contact >= kWindow) {
+      apart /= 2;
+      contact /= 2;
+    }
+  }
+};
+
+// Which half of recent checks found their contact: the environment's or the self pairs'. Halved
+// when the sum reaches kWindow; the half that found more contacts runs first
+// (refinedLinksInCollision), so a contact found there spares the other half's octree pass.
+struct HalfContactCounts {
+  static constexpr std::uint8_t kWindow = 32;
+  std::uint8_t environment = 0;
+  std::uint8_t self = 0;
+  bool selfFirst() const { return self > environment; }
+  void add(bool in_self) {
+    ++(in_self ? self : environment);
+    if (environment + self >= kWindow) {
+      environment /= 2;
+      self /= 2;
+    }
+  }
+};
+
 struct RefineScratch {
   std::uint64_t owner = 0;  // id() of the model it was made for
   fcl_internal::RobotScratch fcl;
@@ -127,6 +175,10 @@ struct RefineScratch {
   // Per self pair (SelfCollision::pairs): the last direction that separated its hulls, tried
   // first (a planner's nearby states are often separated the same way).
   std::vector<Eigen::Vector3d> pair_directions;
+  // Per self pair: its recent verdicts when its links' boxes meet, to order its two exact tests
+  // (selfOctreePass). Both are sound, so the order changes the time, not the answer.
+  std::vector<PairVerdictCounts> pair_verdicts;
+  HalfContactCounts half_contacts;
   std::vector<char> object_apart;  // refineLinkHits' per-object hull verdicts
   RefineCounts counts;
   // Distances for the certified motion validator (refine_clearance.cpp): link-object and
