@@ -131,8 +131,7 @@ TEST(LinkMotionBound, NoPointOfARigidBodyTravelsFartherThanItsBound) {
     Eigen::Isometry3d X1, X2, X, previous;
     ASSERT_TRUE(stateToConfiguration(robot, s1.get(), q, X1));
     ASSERT_TRUE(stateToConfiguration(robot, s2.get(), q, X2));
-    const double angle = Eigen::AngleAxisd(X1.linear().transpose() * X2.linear()).angle();
-    const double limit = bound.freeFlyingBound((X2.translation() - X1.translation()).norm(), angle);
+    const double limit = bound.freeFlyingBound(0, LinkMotionBound::RootMotion(X1, X2));
     std::vector<double> travelled(points.size(), 0.0);
     for (int k = 0; k <= 64; ++k) {
       space->interpolate(s1.get(), s2.get(), k / 64.0, s.get());

@@ -198,12 +198,14 @@ double CertifiedMotionValidator::motionBound(const ob::State* s1, const ob::Stat
   if (!stateToConfiguration(robot, s1, q1, X1) || !stateToConfiguration(robot, s2, q2, X2)) {
     return std::numeric_limits<double>::infinity();
   }
-  if (robot.isFreeFlying()) {
-    const double angle = Eigen::AngleAxisd(X1.linear().transpose() * X2.linear()).angle();
-    return bound_->freeFlyingBound((X2.translation() - X1.translation()).norm(), angle);
-  }
   for (std::size_t i = 0; i < q1.size(); ++i) q2[i] -= q1[i];
-  return bound_->maxBound(q2.data());
+  if (!robot.isFreeFlying()) return bound_->maxBound(q2.data());
+  const LinkMotionBound::RootMotion root(X1, X2);
+  double bound = 0.0;
+  for (int l : bound_->geometryLinks()) {
+    bound = std::max(bound, bound_->freeFlyingBound(l, root) + bound_->linkBound(l, q2.data()));
+  }
+  return bound;
 }
 
 void CertifiedMotionValidator::countMotion(bool free,
@@ -278,17 +280,14 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
     return false;
   }
   // Each link's path-length bound over the whole edge, and each pair's relative one; an
-  // interval's is this times its length (the interpolation is linear in q, and in translation
-  // and angle for SE(3)). Only links and pairs whose bound exceeds what the ends decide need
-  // more than the ends ("active"); a link no joint moves never does.
+  // interval's is this times its length (the interpolation is linear in q, and for SE(3) in
+  // translation and in angle about one axis of the root frame). Only links and pairs whose bound
+  // exceeds what the ends decide need more than the ends ("active"); a link no joint moves
+  // never does.
   for (std::size_t i = 0; i < n; ++i) t.dq[i] = t.q2[i] - t.q1[i];
-  double free_flying = 0.0;
-  if (robot.isFreeFlying()) {
-    const double angle = Eigen::AngleAxisd(t.X_WB1.linear().transpose() * t.X_WB2.linear()).angle();
-    free_flying =
-        bound_->freeFlyingBound((t.X_WB2.translation() - t.X_WB1.translation()).norm(), angle);
-    if (!std::isfinite(free_flying)) return false;
-  }
+  const bool free_flying = robot.isFreeFlying();
+  const LinkMotionBound::RootMotion root =
+      free_flying ? LinkMotionBound::RootMotion(t.X_WB1, t.X_WB2) : LinkMotionBound::RootMotion();
   // Voxel answers carry a margin: a link or pair whose bound over an interval is at most the
   // resolution is decided by its valid ends. Exact answers carry none: only clearances prove.
   const bool has_clearance = backend.clearanceBound() != ClearanceBound::kNone;
@@ -298,7 +297,8 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
   t.active_links.clear();
   double max_bound = 0.0, max_link = 0.0, max_pair = 0.0;
   for (int l : bound_->geometryLinks()) {
-    const double b = free_flying + bound_->linkBound(l, t.dq.data());
+    const double b =
+        (free_flying ? bound_->freeFlyingBound(l, root) : 0.0) + bound_->linkBound(l, t.dq.data());
     if (!std::isfinite(b)) return false;
     t.link_bound[static_cast<std::size_t>(l)] = b;
     if (b > decided_by_ends) t.active_links.push_back(static_cast<std::size_t>(l));

@@ -47,30 +47,37 @@ double travel(const RobotModel& robot, const Joint& joint) {
          std::abs(joint.mimic_offset);
 }
 
-// An upper bound, over every value of the joints in `chain` (from the anchor's frame down to
-// the link, in order), of `distance` (1-Lipschitz, in the anchor's frame) at the link's points.
-// Exact while the chain is rigid; past the first movable joint, the triangle inequality from
-// that joint's origin (rigid in the anchor's frame) through each later joint's origin.
-double chainBound(const RobotModel& robot, const std::vector<int>& chain, const Points& points,
-                  const DistanceTo& distance) {
+// What bounds a 1-Lipschitz function of the link's points in the anchor's frame (a distance to a
+// point or an axis) over every value of the joints in `chain` (from the anchor's frame down to the
+// link, in order): its largest value at `points` (in the anchor's frame) plus `slack`. While the
+// chain is rigid, the link's points themselves (slack 0); past the first movable joint, that
+// joint's origin (rigid in the anchor's frame) and the triangle inequality through each later
+// joint's origin.
+struct ChainReach {
+  Points points;
+  double slack = 0.0;
+};
+
+ChainReach chainReach(const RobotModel& robot, const std::vector<int>& chain,
+                      const Points& points) {
   Eigen::Isometry3d X_AF = Eigen::Isometry3d::Identity();  // current frame F in the anchor's A
   std::size_t k = 0;
   for (; k < chain.size() && !robot.joint(chain[k]).movable(); ++k) {
     X_AF = X_AF * robot.joint(chain[k]).X_PJ;
   }
-  double bound = 0.0;
+  ChainReach reach;
   if (k == chain.size()) {
-    for (const Eigen::Vector3d& p : points) bound = std::max(bound, distance(X_AF * p));
-    return bound;
+    for (const Eigen::Vector3d& p : points) reach.points.push_back(X_AF * p);
+    return reach;
   }
   const Joint& first = robot.joint(chain[k]);
-  const Eigen::Vector3d origin_A = (X_AF * first.X_PJ).translation();
-  double reach = travel(robot, first);  // from `origin_A` to the current frame's origin
+  reach.points.push_back((X_AF * first.X_PJ).translation());
+  reach.slack = travel(robot, first);  // from that origin to the current frame's origin
   Eigen::Isometry3d X_CF = Eigen::Isometry3d::Identity();  // F in the last movable joint's child
   for (++k; k < chain.size(); ++k) {
     const Joint& joint = robot.joint(chain[k]);
     if (joint.movable()) {
-      reach += (X_CF * joint.X_PJ).translation().norm() + travel(robot, joint);
+      reach.slack += (X_CF * joint.X_PJ).translation().norm() + travel(robot, joint);
       X_CF = Eigen::Isometry3d::Identity();
     } else {
       X_CF = X_CF * joint.X_PJ;
@@ -78,7 +85,106 @@ double chainBound(const RobotModel& robot, const std::vector<int>& chain, const 
   }
   double tail = 0.0;
   for (const Eigen::Vector3d& p : points) tail = std::max(tail, (X_CF * p).norm());
-  return distance(origin_A) + reach + tail;
+  reach.slack += tail;
+  return reach;
+}
+
+// An upper bound of `distance` (1-Lipschitz, in the anchor's frame) at the link's points over
+// every value of the joints in `chain` (chainReach); exact while the chain is rigid.
+double chainBound(const RobotModel& robot, const std::vector<int>& chain, const Points& points,
+                  const DistanceTo& distance) {
+  const ChainReach reach = chainReach(robot, chain, points);
+  double bound = 0.0;
+  for (const Eigen::Vector3d& p : reach.points) bound = std::max(bound, distance(p));
+  return bound + reach.slack;
+}
+
+// The cells of axis directions (LinkMotionBound::axisCell): an axis u and -u are the same axis,
+// so each is taken with its largest coordinate k positive, then projected on the face of the
+// cube where that coordinate is 1, cut into kAxisCells x kAxisCells squares.
+constexpr int kCells = LinkMotionBound::kAxisCells;
+
+// The cell's corner (i, j) of face k (i, j from 0 to kCells), as a direction.
+Eigen::Vector3d cellCorner(int k, double i, double j) {
+  Eigen::Vector3d d;
+  d[k] = 1.0;
+  d[(k + 1) % 3] = -1.0 + 2.0 * i / kCells;
+  d[(k + 2) % 3] = -1.0 + 2.0 * j / kCells;
+  return d.normalized();
+}
+
+// Per cell of axis directions, the largest distance of `points` from an axis of the cell, plus
+// `slack`, rounded up to float. A cell's axes lie within a cap about its centre's c (its
+// corners do, and a cap is convex on the sphere), of angular radius rho; a point x at angle
+// alpha from c is at angle alpha +- rho at most from any of them, so its distance from one is at
+// most |x| max sin over [alpha - rho, alpha + rho]: |x| when that holds pi / 2, else
+// |x x c| cos(rho) + |x . c| sin(rho). The points are grouped in boxes of a grid, each with a
+// ball about its centre: the ball's bound (the centre's plus its radius, the bound being
+// 1-Lipschitz) skips the boxes that cannot hold the largest.
+std::vector<float> axisRadiusTable(Points points, double slack) {
+  std::sort(points.begin(), points.end(), [](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+    return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
+  });
+  points.erase(std::unique(points.begin(), points.end()), points.end());
+  Eigen::AlignedBox3d box;
+  for (const Eigen::Vector3d& p : points) box.extend(p);
+  const int side = std::clamp(
+      static_cast<int>(std::round(std::cbrt(static_cast<double>(points.size()) / 4))), 1, 16);
+  const Eigen::Vector3d cell = box.sizes() / side;
+  struct Group {
+    Eigen::Vector3d centre;
+    double radius = 0.0;
+    Points points;
+  };
+  std::vector<Group> groups(static_cast<std::size_t>(side * side * side));
+  for (const Eigen::Vector3d& p : points) {
+    int index = 0;
+    for (int a = 0; a < 3; ++a) {
+      const double at = cell[a] > 0 ? (p[a] - box.min()[a]) / cell[a] : 0.0;
+      index = index * side + std::clamp(static_cast<int>(at), 0, side - 1);
+    }
+    groups[static_cast<std::size_t>(index)].points.push_back(p);
+  }
+  groups.erase(
+      std::remove_if(groups.begin(), groups.end(), [](const Group& g) { return g.points.empty(); }),
+      groups.end());
+  for (Group& g : groups) {
+    Eigen::AlignedBox3d b;
+    for (const Eigen::Vector3d& p : g.points) b.extend(p);
+    g.centre = b.center();
+    for (const Eigen::Vector3d& p : g.points) g.radius = std::max(g.radius, (p - g.centre).norm());
+  }
+  std::vector<float> table;
+  table.reserve(3 * kCells * kCells);
+  for (int k = 0; k < 3; ++k) {
+    for (int i = 0; i < kCells; ++i) {
+      for (int j = 0; j < kCells; ++j) {
+        const Eigen::Vector3d c = cellCorner(k, i + 0.5, j + 0.5);
+        double rho = 0.0;
+        for (int corner = 0; corner < 4; ++corner) {
+          const double cos = c.dot(cellCorner(k, i + (corner & 1), j + (corner >> 1)));
+          rho = std::max(rho, std::acos(std::clamp(cos, -1.0, 1.0)));
+        }
+        rho += 1e-9;  // rounding in the corners and in the axis looked up
+        const double sin_rho = std::sin(rho), cos_rho = std::cos(rho);
+        auto distance = [&](const Eigen::Vector3d& x) {
+          const double along = std::abs(x.dot(c));
+          const double norm = x.norm();
+          return along <= norm * sin_rho ? norm : x.cross(c).norm() * cos_rho + along * sin_rho;
+        };
+        double best = 0.0;
+        for (const Group& g : groups) best = std::max(best, distance(g.points.front()));
+        for (const Group& g : groups) {
+          if (distance(g.centre) + g.radius <= best) continue;
+          for (const Eigen::Vector3d& p : g.points) best = std::max(best, distance(p));
+        }
+        const double value = (best + slack) * (1 + 1e-12);
+        table.push_back(
+            std::nextafter(static_cast<float>(value), std::numeric_limits<float>::infinity()));
+      }
+    }
+  }
+  return table;
 }
 
 }  // namespace
@@ -98,6 +204,7 @@ LinkMotionBound::LinkMotionBound(const RobotModel& robot, bool keep_mesh_root_tr
                  0.0);
   CollisionMeshes meshes(keep_mesh_root_transform, center_mesh_vertices);
   spheres_.resize(static_cast<std::size_t>(link_count_));
+  axis_radius_.resize(static_cast<std::size_t>(link_count_));
   // Per link, each movable joint on its path from the root with its lever (times the mimic
   // multiplier) and variable: the self pairs' levers are sums of these.
   struct JointLever {
@@ -122,6 +229,10 @@ LinkMotionBound::LinkMotionBound(const RobotModel& robot, bool keep_mesh_root_tr
     std::reverse(path.begin(), path.end());
     radius_ = std::max(radius_, chainBound(robot, path, points,
                                            [](const Eigen::Vector3d& x) { return x.norm(); }));
+    if (robot.isFreeFlying()) {
+      const ChainReach reach = chainReach(robot, path, points);
+      axis_radius_[static_cast<std::size_t>(l)] = axisRadiusTable(reach.points, reach.slack);
+    }
     for (std::size_t i = 0; i < path.size(); ++i) {
       const Joint& joint = robot.joint(path[i]);
       if (!joint.movable()) continue;
@@ -220,6 +331,36 @@ double LinkMotionBound::pairDistance(std::size_t p, const RobotData& data, doubl
   }
   // Both are lower bounds; a micrometre covers rounding in the transforms.
   return std::clamp(std::max(whole, slabs) - 1e-6, 0.0, cap);
+}
+
+LinkMotionBound::RootMotion::RootMotion(const Eigen::Isometry3d& X_WB1,
+                                        const Eigen::Isometry3d& X_WB2) {
+  const Eigen::AngleAxisd turn(Eigen::Matrix3d(X_WB1.linear().transpose() * X_WB2.linear()));
+  axis = turn.axis();
+  angle = turn.angle();
+  const Eigen::Vector3d dt =
+      X_WB1.linear().transpose() * (X_WB2.translation() - X_WB1.translation());
+  const double on_axis = dt.dot(axis);
+  along = std::abs(on_axis);
+  across = (dt - on_axis * axis).norm();
+}
+
+int LinkMotionBound::axisCell(const Eigen::Vector3d& axis) {
+  int k = 0;
+  axis.cwiseAbs().maxCoeff(&k);
+  int cell = k;
+  for (int a : {(k + 1) % 3, (k + 2) % 3}) {
+    // The coordinate on the face, from -1 to 1 (NaN for a zero axis: cell 0).
+    double at = (axis[a] / axis[k] + 1.0) * (0.5 * kCells);
+    if (!(at >= 0.0)) at = 0.0;
+    cell = cell * kCells + std::min(static_cast<int>(at), kCells - 1);
+  }
+  return cell;
+}
+
+double LinkMotionBound::axisRadius(int link, const Eigen::Vector3d& axis) const {
+  const std::vector<float>& table = axis_radius_[static_cast<std::size_t>(link)];
+  return table.empty() ? 0.0 : table[static_cast<std::size_t>(axisCell(axis))];
 }
 
 double LinkMotionBound::linkBound(int link, const double* dq) const {

@@ -5,9 +5,14 @@
 // Fixed-base robots, straight-line motions in q: the path of any point of link l is at most
 // sum_v lever(l, v) |dq_v|, where lever(l, v) bounds, over every configuration, the distance from
 // the axis of joint v (and of the mimic joints that follow it, times their multiplier) to the
-// points of link l; 1 for prismatic joints. Free-flying bodies, a translation dt with a rotation
-// by angle theta (OMPL's SE(3) interpolation): at most |dt| + radius * theta, radius bounding the
-// distance of every point from the root frame's origin.
+// points of link l; 1 for prismatic joints. Free-flying bodies (OMPL's SE(3) interpolation: the
+// root's origin moves along the segment dt while the root turns at a constant rate by angle
+// theta about an axis u fixed in the root frame, through its origin): a point x of the root
+// frame moves at a speed whose part along u is that of dt (the rotation's is across u), so its
+// path is at most sqrt(along^2 + (across + theta * |u x x|)^2), along and across the parts of
+// |dt| along and across u; |u x x| (the distance from the axis) is bounded per link by a table
+// over cells of axis directions (axisRadius), loose by at most twice a cell's angular radius
+// (under 0.05 rad) times |x|.
 //
 // Self pairs (RobotModel::checkedPairs): the distance between two links changes only through
 // the joints that move one of them and not the other (those above their common ancestor move
@@ -20,10 +25,12 @@
 // points are those the collision models use); primitives by their bounding box's corners.
 #pragma once
 
+#include <cmath>
 #include <utility>
 #include <vector>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include "octomotion/planner/robot/robot_model.h"
 
@@ -56,9 +63,30 @@ class LinkMotionBound {
   // Free-flying bodies: the largest distance of a point from the root frame's origin, over every
   // configuration of the robot's own joints (held joints included in their transforms).
   double radius() const { return radius_; }
-  double freeFlyingBound(double translation, double angle) const {
-    return translation + radius_ * angle;
+  // A motion of the root frame as OMPL's SE(3) interpolation makes it from X_WB1 to X_WB2: the
+  // origin along the segment between theirs, the rotation by `angle` (0 to pi) at a constant rate
+  // about `axis` (a unit vector of the root frame; fixed in the world too, as X_WB1 * axis). Any
+  // part [a, b] of it is the same motion scaled by b - a.
+  struct RootMotion {
+    RootMotion() = default;  // no motion
+    RootMotion(const Eigen::Isometry3d& X_WB1, const Eigen::Isometry3d& X_WB2);
+    Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();
+    double angle = 0;
+    double along = 0, across = 0;  // the origin's displacement along the axis and across it
+  };
+  // Free-flying bodies: the path-length bound of link l's points (over every configuration of
+  // the robot's own joints) for the root's motion alone; a joint motion adds linkBound.
+  double freeFlyingBound(int link, const RootMotion& motion) const {
+    const double turn = motion.across + motion.angle * axisRadius(link, motion.axis);
+    return std::sqrt(motion.along * motion.along + turn * turn);
   }
+  // Free-flying bodies: at least the largest distance of link l's points (over every
+  // configuration) from the axis through the root's origin along the unit vector `axis` (root
+  // frame), at most their largest distance from the origin; 0 for a link without geometry.
+  double axisRadius(int link, const Eigen::Vector3d& axis) const;
+  // The axis tables' cells: kAxisCells x kAxisCells per half cube face (an axis and its opposite
+  // share a cell).
+  static constexpr int kAxisCells = 32;
 
   // The robot's checked self pairs (RobotModel::checkedPairs at construction), in its order.
   const std::vector<std::pair<int, int>>& pairs() const { return pairs_; }
@@ -88,6 +116,11 @@ class LinkMotionBound {
   std::vector<std::pair<int, int>> pairs_;
   std::vector<double> pair_levers_;  // pair-major, per variable
   std::vector<Spheres> spheres_;     // per link (empty slabs: no geometry)
+
+  // Free-flying robots: per link, the bound of the distance from an axis in each cell of axis
+  // directions (rounded up to float; empty for fixed-base robots and links without geometry).
+  std::vector<std::vector<float>> axis_radius_;
+  static int axisCell(const Eigen::Vector3d& axis);
 
   int link_count_ = 0;
   int variable_count_ = 0;
