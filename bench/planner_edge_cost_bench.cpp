@@ -53,14 +53,22 @@ std::vector<test::MbmProblem> chosen(const test::MbmProblems& set) {
   return out;
 }
 
-void run(benchmark::State& state, CheckerKind checker, int screen_levels) {
-  ompl::msg::setLogLevel(ompl::msg::LOG_NONE);
+// The problems, extracted once; null (the state skipped with an error) without ../shared/data.
+const test::MbmProblems* problems(benchmark::State& state) {
   static const test::MbmProblems set;
   if (set.problems().empty() ||
       !std::filesystem::exists(test::MbmProblems::panda() + "/panda.urdf")) {
     state.SkipWithError("no MotionBenchMaker problems or Panda under ../shared/data");
-    return;
+    return nullptr;
   }
+  return &set;
+}
+
+void run(benchmark::State& state, CheckerKind checker, int screen_levels) {
+  ompl::msg::setLogLevel(ompl::msg::LOG_NONE);
+  const test::MbmProblems* problem_set = problems(state);
+  if (!problem_set) return;
+  const test::MbmProblems& set = *problem_set;
   const std::string panda = test::MbmProblems::panda();
   CertifiedMotionValidator::Counts total;
   std::size_t plans = 0, solved = 0;
@@ -152,12 +160,9 @@ BENCHMARK_CAPTURE(run, fcl_noscreen, CheckerKind::kFcl, 0)
 
 void BM_GridClearance(benchmark::State& state) {
   ompl::msg::setLogLevel(ompl::msg::LOG_NONE);
-  static const test::MbmProblems set;
-  if (set.problems().empty() ||
-      !std::filesystem::exists(test::MbmProblems::panda() + "/panda.urdf")) {
-    state.SkipWithError("no MotionBenchMaker problems or Panda under ../shared/data");
-    return;
-  }
+  const test::MbmProblems* problem_set = problems(state);
+  if (!problem_set) return;
+  const test::MbmProblems& set = *problem_set;
   struct Posed {
     std::shared_ptr<const OctreeCollisionModel> model;
     std::vector<RobotData> poses;

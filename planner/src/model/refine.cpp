@@ -386,9 +386,9 @@ bool selfOctreePass(const CollisionModelParts& parts, const RefineData& data, Re
       links, path, scratch,
       [&](std::size_t i) {
         const int a = links.links[pairs[i].a].link, b = links.links[pairs[i].b].link;
-        PairVerdictCounts& seen = r.pair_verdicts[i];
+        RecentOutcomes& seen = r.pair_verdicts[i];
         // A pair mostly in contact lately: its hulls would not be apart.
-        const bool contact_first = seen.contactFirst();
+        const bool contact_first = seen.secondLeads();
         if (contact_first && certainPairContact(data, scratch.robot, a, b)) {
           seen.add(true);
           ++r.counts.certain_self_contacts;
@@ -452,7 +452,7 @@ bool OctreeCollisionModel::refinedSelfInCollision(CheckerPath path, CheckScratch
 
 // The two halves in one query, so a link's FCL objects are posed once. FCL runs after both
 // octree passes found no certain contact, the environment's links before the self pairs. The
-// half that recently found more contacts makes its octree pass first (HalfContactCounts): a
+// half that recently found more contacts makes its octree pass first (RecentOutcomes): a
 // certain contact there spares the other half's pass. Every test is sound, so the order changes
 // the time, not the answer.
 bool OctreeCollisionModel::refinedLinksInCollision(CheckerPath path, CheckScratch& scratch) const {
@@ -461,7 +461,7 @@ bool OctreeCollisionModel::refinedLinksInCollision(CheckerPath path, CheckScratc
     r.half_contacts.add(in_self);
     return true;
   };
-  if (r.half_contacts.selfFirst()) {
+  if (r.half_contacts.secondLeads()) {
     if (detail::selfOctreePass(*parts_, *refine_, r, path, scratch)) return found(true);
     if (detail::environmentOctreePass(*parts_, *refine_, r, path, scratch)) return found(false);
   } else {

@@ -126,37 +126,22 @@ struct RefineData {
 // far below any gap that matters.
 inline constexpr double kHullGap = 1e-5;
 
-// A self pair's recent verdicts from its exact tests: hulls apart, certain contact. The counts
-// halve when their sum reaches kWindow, so they follow the states a thread checks now (a
-// planner's nearby states), and a pair mostly in contact tries the certain-contact test before
-// the hulls' (which cannot clear it).
-struct PairVerdictCounts {
+// Which of two outcomes a thread saw lately: the counts halve when their sum reaches kWindow,
+// so they follow the states it checks now (a planner's nearby states). Per self pair, its exact
+// tests' verdicts (first: hulls apart, second: certain contact): a pair mostly in contact tries
+// the certain-contact test before the hulls' (which cannot clear it). Per query, the half that
+// found the contact (first: environment, second: self pairs): the half that found more runs its
+// octree pass first (refinedLinksInCollision), so a contact found there spares the other's.
+struct RecentOutcomes {
   static constexpr std::uint8_t kWindow = 32;
-  std::uint8_t apart = 0;
-  std::uint8_t contact = 0;
-  bool contactFirst() const { return contact > apart; }
-  void add(bool in_contact) {
-    ++(in_contact ? contact : apart);
-    if (apart + contact >= kWindow) {
-      apart /= 2;
-      contact /= 2;
-    }
-  }
-};
-
-// Which half of recent checks found their contact: the environment's or the self pairs'. Halved
-// when the sum reaches kWindow; the half that found more contacts runs first
-// (refinedLinksInCollision), so a contact found there spares the other half's octree pass.
-struct HalfContactCounts {
-  static constexpr std::uint8_t kWindow = 32;
-  std::uint8_t environment = 0;
-  std::uint8_t self = 0;
-  bool selfFirst() const { return self > environment; }
-  void add(bool in_self) {
-    ++(in_self ? self : environment);
-    if (environment + self >= kWindow) {
-      environment /= 2;
-      self /= 2;
+  std::uint8_t first = 0;
+  std::uint8_t second = 0;
+  bool secondLeads() const { return second > first; }
+  void add(bool is_second) {
+    ++(is_second ? second : first);
+    if (first + second >= kWindow) {
+      first /= 2;
+      second /= 2;
     }
   }
 };
@@ -177,8 +162,8 @@ struct RefineScratch {
   std::vector<Eigen::Vector3d> pair_directions;
   // Per self pair: its recent verdicts when its links' boxes meet, to order its two exact tests
   // (selfOctreePass). Both are sound, so the order changes the time, not the answer.
-  std::vector<PairVerdictCounts> pair_verdicts;
-  HalfContactCounts half_contacts;
+  std::vector<RecentOutcomes> pair_verdicts;
+  RecentOutcomes half_contacts;    // second: the self pairs'
   std::vector<char> object_apart;  // refineLinkHits' per-object hull verdicts
   RefineCounts counts;
   // Distances for the certified motion validator (refine_clearance.cpp): link-object and
