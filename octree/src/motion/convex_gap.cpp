@@ -4,7 +4,6 @@
 #include <array>
 #include <cmath>
 #include <limits>
-#include <utility>
 #include <vector>
 
 #include "octomotion/error.h"
@@ -35,39 +34,15 @@ std::vector<std::uint32_t> ConvexPoints::store(const std::vector<Eigen::Vector3d
   }
   centroid_ /= static_cast<double>(points.size());
   for (const Eigen::Vector3d& p : points) reach_ = std::max(reach_, (p - centroid_).norm());
-  // order[k]: the given index of stored point k; clusters split at the median along the longest
-  // side of their box.
-  std::vector<std::uint32_t> order(points.size());
-  for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<std::uint32_t>(i);
+  // order[k]: the given index of stored point k.
+  std::vector<std::uint32_t> order;
   if (points.size() >= kClusteredFrom) {
-    std::vector<std::pair<std::size_t, std::size_t>> todo = {{0, order.size()}};
-    while (!todo.empty()) {
-      const auto [begin, end] = todo.back();
-      todo.pop_back();
-      Eigen::AlignedBox3d box;
-      for (std::size_t k = begin; k < end; ++k) box.extend(points[order[k]]);
-      if (end - begin > kClusterPoints) {
-        Eigen::Index axis = 0;
-        box.sizes().maxCoeff(&axis);
-        const std::size_t middle = begin + (end - begin) / 2;
-        std::nth_element(
-            order.begin() + static_cast<std::ptrdiff_t>(begin),
-            order.begin() + static_cast<std::ptrdiff_t>(middle),
-            order.begin() + static_cast<std::ptrdiff_t>(end),
-            [&](std::uint32_t a, std::uint32_t b) { return points[a][axis] < points[b][axis]; });
-        todo.emplace_back(begin, middle);
-        todo.emplace_back(middle, end);
-        continue;
-      }
-      Cluster cluster{box.center(), 0, static_cast<std::uint32_t>(begin),
-                      static_cast<std::uint32_t>(end)};
-      for (std::size_t k = begin; k < end; ++k) {
-        cluster.radius = std::max(cluster.radius, (points[order[k]] - cluster.centre).norm());
-      }
-      // Far above rounding in the bound, so no skipped cluster holds a higher point.
-      cluster.radius += 1e-12 * (cluster.radius + cluster.centre.norm());
-      clusters_.push_back(cluster);
-    }
+    clusters_ = clusterPoints(points, kClusterPoints, order);
+    // Far above rounding in the bound, so no skipped cluster holds a higher point.
+    for (PointCluster& c : clusters_) c.radius += 1e-12 * (c.radius + c.centre.norm());
+  } else {
+    order.resize(points.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<std::uint32_t>(i);
   }
   x_.reserve(points.size());
   y_.reserve(points.size());
@@ -176,7 +151,7 @@ std::size_t ConvexPoints::supportIndex(const Eigen::Vector3d& d) const {
   std::size_t best = supportIndexIn(d, clusters_[start].begin, clusters_[start].end, value);
   const double norm = d.norm();
   for (std::size_t k = 0; k < clusters_.size(); ++k) {
-    const Cluster& c = clusters_[k];
+    const PointCluster& c = clusters_[k];
     if (k == start || d.dot(c.centre) + norm * c.radius <= value) continue;
     const double before = value;
     const std::size_t i = supportIndexIn(d, c.begin, c.end, value);

@@ -144,7 +144,7 @@ const Eigen::Vector3d& extremeVertex(const ClosedLinkMesh& mesh, const Eigen::Ve
   std::size_t start = 0;
   double start_key = std::numeric_limits<double>::infinity();
   for (std::size_t k = 0; k < mesh.clusters.size(); ++k) {
-    const double key = sign * (mesh.clusters[k].centre_L - p).squaredNorm();
+    const double key = sign * (mesh.clusters[k].centre - p).squaredNorm();
     if (key < start_key) {
       start_key = key;
       start = k;
@@ -152,7 +152,7 @@ const Eigen::Vector3d& extremeVertex(const ClosedLinkMesh& mesh, const Eigen::Ve
   }
   std::size_t best = 0;
   double best2 = farthest ? -1 : std::numeric_limits<double>::infinity();
-  auto scan = [&](const ClosedLinkMesh::Cluster& c) {
+  auto scan = [&](const PointCluster& c) {
     for (std::uint32_t i = c.begin; i < c.end; ++i) {
       const double d2 = (mesh.vertices_L[i] - p).squaredNorm();
       if (farthest ? d2 > best2 : d2 < best2) {
@@ -164,8 +164,8 @@ const Eigen::Vector3d& extremeVertex(const ClosedLinkMesh& mesh, const Eigen::Ve
   scan(mesh.clusters[start]);
   for (std::size_t k = 0; k < mesh.clusters.size(); ++k) {
     if (k == start) continue;
-    const ClosedLinkMesh::Cluster& c = mesh.clusters[k];
-    const double centre2 = (c.centre_L - p).squaredNorm();
+    const PointCluster& c = mesh.clusters[k];
+    const double centre2 = (c.centre - p).squaredNorm();
     const double best_distance = std::sqrt(best2);
     // Every vertex of c lies within [|centre - p| - radius, |centre - p| + radius] of p.
     if (farthest) {
@@ -189,39 +189,16 @@ bool crosses(const ClosedLinkMesh& mover, const ClosedLinkMesh& other,
          deepOutsideHull(other, X_OM * extremeVertex(mover, c_M, true));
 }
 
-// Splits the vertices into clusters of at most kClusterVertices at the median along the
-// longest side of their box, reordering them so each cluster is contiguous.
+// Clusters the vertices (at most kClusterVertices each), reordering them so each cluster is
+// contiguous.
 constexpr std::size_t kClusterVertices = 16;
 void clusterVertices(ClosedLinkMesh& mesh) {
-  std::vector<Eigen::Vector3d>& v = mesh.vertices_L;
-  std::vector<std::pair<std::size_t, std::size_t>> todo = {{0, v.size()}};
-  while (!todo.empty()) {
-    const auto [begin, end] = todo.back();
-    todo.pop_back();
-    Eigen::AlignedBox3d box;
-    for (std::size_t i = begin; i < end; ++i) box.extend(v[i]);
-    if (end - begin > kClusterVertices) {
-      Eigen::Index axis = 0;
-      box.sizes().maxCoeff(&axis);
-      const std::size_t middle = begin + (end - begin) / 2;
-      std::nth_element(
-          v.begin() + static_cast<std::ptrdiff_t>(begin),
-          v.begin() + static_cast<std::ptrdiff_t>(middle),
-          v.begin() + static_cast<std::ptrdiff_t>(end),
-          [&](const Eigen::Vector3d& a, const Eigen::Vector3d& b) { return a[axis] < b[axis]; });
-      todo.emplace_back(begin, middle);
-      todo.emplace_back(middle, end);
-      continue;
-    }
-    ClosedLinkMesh::Cluster cluster;
-    cluster.centre_L = box.center();
-    for (std::size_t i = begin; i < end; ++i) {
-      cluster.radius = std::max(cluster.radius, (v[i] - cluster.centre_L).norm());
-    }
-    cluster.begin = static_cast<std::uint32_t>(begin);
-    cluster.end = static_cast<std::uint32_t>(end);
-    mesh.clusters.push_back(cluster);
-  }
+  std::vector<std::uint32_t> order;
+  mesh.clusters = clusterPoints(mesh.vertices_L, kClusterVertices, order);
+  std::vector<Eigen::Vector3d> reordered;
+  reordered.reserve(order.size());
+  for (std::uint32_t i : order) reordered.push_back(mesh.vertices_L[i]);
+  mesh.vertices_L = std::move(reordered);
 }
 
 // The primitive's solid shrunk by kCertainDepth (its points at least that deep), or nothing when

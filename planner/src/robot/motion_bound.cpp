@@ -3,11 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <limits>
 #include <string>
 #include <variant>
 
+#include "octomotion/motion/point_clusters.h"
 #include "octomotion/octree/shapes.h"
 #include "octomotion/planner/robot/collision_meshes.h"
 
@@ -118,42 +120,17 @@ Eigen::Vector3d cellCorner(int k, double i, double j) {
 // corners do, and a cap is convex on the sphere), of angular radius rho; a point x at angle
 // alpha from c is at angle alpha +- rho at most from any of them, so its distance from one is at
 // most |x| max sin over [alpha - rho, alpha + rho]: |x| when that holds pi / 2, else
-// |x x c| cos(rho) + |x . c| sin(rho). The points are grouped in boxes of a grid, each with a
+// |x x c| cos(rho) + |x . c| sin(rho). The points are in clusters (clusterPoints), each with a
 // ball about its centre: the ball's bound (the centre's plus its radius, the bound being
-// 1-Lipschitz) skips the boxes that cannot hold the largest.
+// 1-Lipschitz) skips the clusters that cannot hold the largest.
+constexpr std::size_t kAxisClusterPoints = 8;
 std::vector<float> axisRadiusTable(Points points, double slack) {
   std::sort(points.begin(), points.end(), [](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
     return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
   });
   points.erase(std::unique(points.begin(), points.end()), points.end());
-  Eigen::AlignedBox3d box;
-  for (const Eigen::Vector3d& p : points) box.extend(p);
-  const int side = std::clamp(
-      static_cast<int>(std::round(std::cbrt(static_cast<double>(points.size()) / 4))), 1, 16);
-  const Eigen::Vector3d cell = box.sizes() / side;
-  struct Group {
-    Eigen::Vector3d centre;
-    double radius = 0.0;
-    Points points;
-  };
-  std::vector<Group> groups(static_cast<std::size_t>(side * side * side));
-  for (const Eigen::Vector3d& p : points) {
-    int index = 0;
-    for (int a = 0; a < 3; ++a) {
-      const double at = cell[a] > 0 ? (p[a] - box.min()[a]) / cell[a] : 0.0;
-      index = index * side + std::clamp(static_cast<int>(at), 0, side - 1);
-    }
-    groups[static_cast<std::size_t>(index)].points.push_back(p);
-  }
-  groups.erase(
-      std::remove_if(groups.begin(), groups.end(), [](const Group& g) { return g.points.empty(); }),
-      groups.end());
-  for (Group& g : groups) {
-    Eigen::AlignedBox3d b;
-    for (const Eigen::Vector3d& p : g.points) b.extend(p);
-    g.centre = b.center();
-    for (const Eigen::Vector3d& p : g.points) g.radius = std::max(g.radius, (p - g.centre).norm());
-  }
+  std::vector<std::uint32_t> order;
+  const std::vector<PointCluster> clusters = clusterPoints(points, kAxisClusterPoints, order);
   std::vector<float> table;
   table.reserve(3 * kCells * kCells);
   for (int k = 0; k < 3; ++k) {
@@ -173,10 +150,13 @@ std::vector<float> axisRadiusTable(Points points, double slack) {
           return along <= norm * sin_rho ? norm : x.cross(c).norm() * cos_rho + along * sin_rho;
         };
         double best = 0.0;
-        for (const Group& g : groups) best = std::max(best, distance(g.points.front()));
-        for (const Group& g : groups) {
+        for (const PointCluster& g : clusters)
+          best = std::max(best, distance(points[order[g.begin]]));
+        for (const PointCluster& g : clusters) {
           if (distance(g.centre) + g.radius <= best) continue;
-          for (const Eigen::Vector3d& p : g.points) best = std::max(best, distance(p));
+          for (std::uint32_t m = g.begin; m < g.end; ++m) {
+            best = std::max(best, distance(points[order[m]]));
+          }
         }
         const double value = (best + slack) * (1 + 1e-12);
         table.push_back(

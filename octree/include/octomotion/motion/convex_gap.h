@@ -14,6 +14,8 @@
 
 #include <Eigen/Geometry>
 
+#include "octomotion/motion/point_clusters.h"
+
 namespace octomotion {
 
 class ConvexPoints {
@@ -48,15 +50,10 @@ class ConvexPoints {
 
  private:
   std::vector<double> x_, y_, z_;  // split by coordinate: the support loop vectorises
-  // Many points come in clusters of nearby ones, contiguous in x_, y_, z_ ([begin, end) within
-  // `radius` of `centre`): supportIndex skips a cluster whose bound d . centre + |d| radius
-  // cannot beat the best point found.
-  struct Cluster {
-    Eigen::Vector3d centre;
-    double radius;
-    std::uint32_t begin, end;
-  };
-  std::vector<Cluster> clusters_;
+  // Many points come in clusters of nearby ones (clusterPoints), contiguous in x_, y_, z_:
+  // supportIndex skips a cluster whose bound d . centre + |d| radius cannot beat the best point
+  // found.
+  std::vector<PointCluster> clusters_;
   // Stores the points, clustered when many; returns each given point's index.
   std::vector<std::uint32_t> store(const std::vector<Eigen::Vector3d>& points);
   std::size_t supportIndexIn(const Eigen::Vector3d& d, std::size_t begin, std::size_t end,

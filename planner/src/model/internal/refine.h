@@ -18,6 +18,7 @@
 
 #include "../../robot/internal/fcl_robot.h"
 #include "octomotion/motion/convex_gap.h"
+#include "octomotion/motion/point_clusters.h"
 #include "octomotion/planner/model/collision_model.h"
 #include "octomotion/planner/scene/environment_geometry.h"
 
@@ -67,15 +68,10 @@ inline constexpr std::size_t kWitnessPoints = 24;
 // on the inner side) and, per face, the largest n . v over the vertices (the hull's extent
 // along n); empty otherwise.
 struct ClosedLinkMesh {
-  // Nearby vertices, contiguous in vertices_L: [begin, end) within `radius` of `centre_L`, so
-  // the searches for the vertex nearest or farthest from a point skip most clusters.
-  struct Cluster {
-    Eigen::Vector3d centre_L;
-    double radius = 0;
-    std::uint32_t begin = 0, end = 0;
-  };
   std::vector<Eigen::Vector3d> vertices_L;
-  std::vector<Cluster> clusters;
+  // Nearby vertices (clusterPoints, in L), contiguous in vertices_L, so the searches for the
+  // vertex nearest or farthest from a point skip most clusters.
+  std::vector<PointCluster> clusters;
   std::vector<Eigen::Vector4d> planes_L;
   std::vector<double> supports_L;
   Eigen::Vector3d centroid_L = Eigen::Vector3d::Zero();  // of the vertices
