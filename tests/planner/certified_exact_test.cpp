@@ -182,6 +182,21 @@ TEST_P(CertifiedExact, AcceptedEdgesNearObstaclesAreFreeForFclAndCollidingOnesAr
   EXPECT_GT(midpoint_colliding, 0);
 }
 
+// OMPL promises a valid first state, but a caller may break that; the edge is then not free.
+TEST_P(CertifiedExact, EdgesFromACollidingStateAreRejected) {
+  const auto* validator =
+      dynamic_cast<const CertifiedMotionValidator*>(si_->getMotionValidator().get());
+  ASSERT_NE(validator, nullptr);
+  const double reach = 0.15 * si_->getMaximumExtent();
+  ompl::base::ScopedState<> s1(si_), s2(si_);
+  for (int k = 0; k < 10; ++k) {
+    do sampleUniform(s1.get());
+    while (fclClearance(s1.get()) >= 0);
+    sampleFreeNear(s1.get(), reach, s2.get());
+    EXPECT_FALSE(validator->checkMotion(s1.get(), s2.get())) << "edge " << k;
+  }
+}
+
 // Edges that graze: two free states symmetric about a state just inside an obstacle (or another
 // link), their motion bound below a voxel, which voxel answers decide by the ends alone. The
 // edge's midpoint is that state, so every such edge must be rejected.

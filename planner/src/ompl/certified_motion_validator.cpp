@@ -376,7 +376,11 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
     t.distance.resize(t.distance.size() + pairs, 0.0);
     if (!place(t_edge)) return false;
     BackendScratch& scratch = *t.backend;
-    if (screenedFree(t_edge)) {
+    // Exact answers: a positive clearance (distance) is the link's (pair's) exact verdict, so
+    // the values come first and the collision check runs only for a half they leave open. Not at
+    // s1, whose full check also covers the links and pairs the edge does not move.
+    const bool values_first = exact && t_edge != 0.0 && !screenedFree(t_edge);
+    if (screenedFree(t_edge) || values_first) {
       backend.setPose(t.q.data(), n, t.X_WB, scratch);  // its clearances only
     } else {
       (environment ? state_checks_ : self_checks_).fetch_add(1, std::memory_order_relaxed);
@@ -421,6 +425,39 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
           ++tally.pair_distances;
           const auto& [link_a, link_b] = bound_->pairs()[p];
           d[p] = std::max(d[p], backend.linkPairDistance(scratch, link_a, link_b, cap));
+        }
+      }
+    }
+    if (values_first) {
+      // A half is free when each of its active links (pairs) is proven over the interval or
+      // has a positive value; the others do not move (relative to each other) along the edge,
+      // and s1 was checked.
+      auto allFree = [](const std::vector<std::size_t>& active, const double* values,
+                        std::uint64_t done) {
+        for (std::size_t k = 0; k < active.size(); ++k) {
+          if (k < 64 && (done >> k & 1)) continue;
+          if (!(values[active[k]] > 0)) return false;
+        }
+        return true;
+      };
+      const bool check_environment =
+          environment &&
+          !(clearances && has_clearance &&
+            allFree(t.active_links, t.clearance.data() + slot * stride, in ? in->links_done : 0));
+      const bool check_self =
+          self && !(distances && allFree(t.active_pairs, t.distance.data() + slot * pairs,
+                                         in ? in->pairs_done : 0));
+      if (check_environment || check_self) {
+        (check_environment ? state_checks_ : self_checks_).fetch_add(1, std::memory_order_relaxed);
+        ++tally.proof_checks;
+        const bool collides =
+            check_environment && check_self ? backend.inCollision(t.q.data(), n, t.X_WB, scratch)
+            : check_environment ? backend.environmentInCollision(t.q.data(), n, t.X_WB, scratch)
+                                : backend.selfInCollision(t.q.data(), n, t.X_WB, scratch);
+        if (collides) {
+          std::fill_n(t.clearance.data() + slot * stride, stride, 0.0);
+          std::fill_n(t.distance.data() + slot * pairs, pairs, 0.0);
+          return false;
         }
       }
     }
@@ -484,8 +521,8 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
   };
 
   try {
-    // s1 is valid by contract; its clearances are still needed (0 if it is not valid after
-    // all: the slot stays zero).
+    // s1 is valid by OMPL's contract; it is checked all the same (most edges start at a
+    // remembered end), with its clearances, which the proof needs.
     const bool need_clearance = !t.active_links.empty();
     bool need_distance = !t.active_pairs.empty();  // after the pair table, below
     // An end: remembered, or checked (and remembered when valid).
@@ -583,7 +620,8 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
     std::size_t slot1 = 0, slot2 = 0;
     const bool s2_valid = evaluateEnd(1.0, slot2);
     if (!s2_valid && !want_last) return false;
-    evaluateEnd(0.0, slot1);
+    // s1 is valid by OMPL's contract; one that is not rejects the edge.
+    if (!evaluateEnd(0.0, slot1)) return false;
     t.todo.clear();
     t.todo.push_back({0.0, 1.0, slot1, slot2, s2_valid, 0, 0});
     // Breadth first (midpoints first, coarse to fine) finds a collision with few checks; depth
