@@ -11,65 +11,13 @@
 #include <limits>
 #include <vector>
 
+#include "internal/certified_scratch.h"
 #include "octomotion/error.h"
 #include "octomotion/planner/ompl/state_space.h"
 
 namespace octomotion {
 
 namespace ob = ompl::base;
-
-// One thread's working memory, rebuilt when the thread turns to another backend; kept between
-// edges so that checking one allocates nothing once the vectors have grown.
-struct CertifiedMotionValidator::Scratch {
-  // An interval [a, b] of the edge: its ends' slots (their clearances and pair distances); the
-  // end b may be known invalid (only while looking for the last valid state); the active links
-  // and pairs already proven over it (bit k: the k-th active one).
-  struct Interval {
-    double a, b;
-    std::size_t slot_a, slot_b;
-    bool b_valid;
-    std::uint64_t links_done, pairs_done;
-  };
-  std::uint64_t owner = 0;
-  std::unique_ptr<BackendScratch> backend;
-  RobotData data;  // link poses for backends that keep none (posedRobot)
-  std::vector<double> q, q1, q2, dq;
-  Eigen::Isometry3d X_WB = Eigen::Isometry3d::Identity();
-  Eigen::Isometry3d X_WB1 = Eigen::Isometry3d::Identity();
-  Eigen::Isometry3d X_WB2 = Eigen::Isometry3d::Identity();
-  std::vector<double> link_bound, pair_bound, caps;  // per link, per pair, per link
-  std::vector<std::size_t> active_links;
-  std::vector<std::size_t> active_pairs;
-  std::vector<double> clearance, distance;  // per evaluated state: per link, per pair
-  std::vector<Interval> todo;
-  // Valid ends checked before (direct-mapped by a hash of the configuration): the values of the
-  // links and pairs active then, NaN for the others.
-  struct Remembered {
-    std::uint64_t validator = 0;
-    std::vector<double> key, clearance, distance;
-  };
-  static constexpr std::size_t kRemembered = 64;
-  std::array<Remembered, kRemembered> remembered;
-  std::vector<double> key;
-  // Free-flying robots: an OMPL state for the interpolated ones (the space kept alive with it).
-  ob::StateSpacePtr space;
-  ob::State* state = nullptr;
-
-  Scratch() = default;
-  Scratch(const Scratch&) = delete;
-  Scratch& operator=(const Scratch&) = delete;
-  ~Scratch() { release(); }
-  void useSpace(const ob::StateSpacePtr& s) {
-    if (space == s && state) return;
-    release();
-    space = s;
-    state = space->allocState();
-  }
-  void release() {
-    if (state) space->freeState(state);
-    state = nullptr;
-  }
-};
 
 namespace {
 
