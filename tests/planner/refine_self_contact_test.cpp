@@ -168,6 +168,44 @@ TEST(RefineSelfContact, AdaptiveTestOrdersKeepFclAnswers) {
   expectAdaptiveOrdersKeepFclAnswers(robot, 0xada7);
 }
 
+// Two capsules crossing like a plus sign at their middles: no vertex of either lies inside the
+// other (a capsule's side has vertices at its ends only), but points of their long side edges
+// do, so the crossing is certain without FCL; at every angle of the cross, FCL agrees.
+TEST(RefineSelfContact, CapsulesCrossingAtTheirSidesAreCertainContacts) {
+  const std::string urdf = R"(<robot name="cross">
+  <link name="root"/>
+  <link name="upright"><collision><origin xyz="0 0 -0.2125"/>
+    <geometry><mesh filename="upper_arm.stl"/></geometry></collision></link>
+  <link name="hub"/>
+  <link name="bar"><collision><origin xyz="-0.196 0 0" rpy="0 1.5707963267948966 0"/>
+    <geometry><mesh filename="forearm.stl"/></geometry></collision></link>
+  <joint name="fix" type="fixed"><parent link="root"/><child link="upright"/></joint>
+  <joint name="turn" type="revolute"><parent link="root"/><child link="hub"/>
+    <axis xyz="0 0 1"/><limit lower="-3.2" upper="3.2" effort="1" velocity="1"/></joint>
+  <joint name="hold" type="fixed"><parent link="hub"/><child link="bar"/></joint>
+</robot>)";
+  const RobotModel robot = RobotModel::fromUrdfString(
+      urdf, "cross.urdf", std::string(OCTOMOTION_SOURCE_DIR) + "/robots/meshes/octo6");
+  const EnvironmentGeometry none = EnvironmentGeometry::load({});
+  CollisionModelOptions options;
+  options.refine = RefineMode::kExact;
+  const OctreeCollisionModel model(robot, none, options);
+  const FclCollisionModel fcl(robot, none);
+  auto exact = fcl.makeScratch();
+  CheckScratch scratch = model.makeScratch();
+  for (int k = 0; k < 24; ++k) {
+    const double q = -3.1 + 6.2 * k / 23;
+    SCOPED_TRACE(q);
+    fcl.setConfiguration(&q, 1, Eigen::Isometry3d::Identity(), *exact);
+    ASSERT_TRUE(fcl.selfInCollision(*exact));
+    const RefineCounts before = model.refineCounts(scratch);
+    EXPECT_TRUE(
+        model.inCollision(&q, 1, Eigen::Isometry3d::Identity(), CheckerPath::kFused, scratch));
+    EXPECT_EQ(model.refineCounts(scratch).certain_self_contacts, before.certain_self_contacts + 1);
+    EXPECT_EQ(model.refineCounts(scratch).fcl_pairs, before.fcl_pairs);
+  }
+}
+
 TEST(RefineSelfContact, LinksClearedByObjectHullsAreFreeForFcl) {
   if (!std::filesystem::exists(kPanda + "/panda.urdf")) GTEST_SKIP() << "no Panda";
   RobotModel robot = RobotModel::fromUrdfFile(kPanda + "/panda.urdf");

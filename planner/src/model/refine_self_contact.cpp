@@ -1,9 +1,10 @@
 // RefineMode::kExact's certain self contacts (internal/refine.h), element by element as FCL
-// tests them. Two closed meshes are in contact for FCL when a vertex of one lies kCertainDepth
-// inside the other and another of its vertices kCertainDepth outside: the first's surface is
-// connected and has points on both sides of the second's, so the two surfaces cross, and FCL's
-// mesh test (triangle against triangle) reports the crossing. A primitive is a solid for FCL:
-// a mesh vertex (on a triangle FCL tests) kCertainDepth inside it is a contact, so is a closed
+// tests them. Two closed meshes are in contact for FCL when a point of one's surface (a vertex,
+// or a point of a long edge) lies kCertainDepth inside the other and one of its vertices
+// kCertainDepth outside: the first's surface is connected and has points on both sides of the
+// second's, so the two surfaces cross, and FCL's mesh test (triangle against triangle) reports
+// the crossing. A primitive is a solid for FCL: a point of a mesh's surface (on a triangle FCL
+// tests) kCertainDepth inside it is a contact, so is a closed
 // mesh crossing it (closedMeshCrossesPrimitive) or another primitive overlapping it
 // (primitivesOverlap). Such a pair needs neither its voxels nor FCL, and the check stops there.
 #include <algorithm>
@@ -180,13 +181,39 @@ const Eigen::Vector3d& extremeVertex(const ClosedLinkMesh& mesh, const Eigen::Ve
   return mesh.vertices_L[best];
 }
 
-// A vertex of `mover` (placed in `other`'s frame by X_OM) deep inside `other` and one deep
-// outside: the candidates are mover's vertices nearest to and farthest from other's centroid.
+// A point of `mover`'s surface (placed in `other`'s frame by X_OM) deep inside `other` and one
+// deep outside: mover's surface is connected, so it crosses other's, and two of their triangles
+// meet. The inside candidates are mover's vertex nearest other's centroid, then the nearest
+// point of its long edges; the outside one its vertex farthest from the centroid.
 bool crosses(const ClosedLinkMesh& mover, const ClosedLinkMesh& other,
              const Eigen::Isometry3d& X_OM) {
   const Eigen::Vector3d c_M = X_OM.inverse() * other.centroid_L;
-  return deepInsideMesh(other, X_OM * extremeVertex(mover, c_M, false)) &&
-         deepOutsideHull(other, X_OM * extremeVertex(mover, c_M, true));
+  if (!deepInsideMesh(other, X_OM * extremeVertex(mover, c_M, false)) &&
+      (mover.edge_start_L.empty() ||
+       !deepInsideMesh(other, X_OM * nearestOnLongEdges(mover, c_M)))) {
+    return false;
+  }
+  return deepOutsideHull(other, X_OM * extremeVertex(mover, c_M, true));
+}
+
+// The mesh's longest edges into mesh.edge_*_L (ClosedLinkMesh::kLongEdges).
+void longEdges(const IndexedMesh& indexed, ClosedLinkMesh& mesh) {
+  const double shortest = mesh.box_L.diagonal().norm() / 3;
+  std::vector<std::pair<double, std::pair<std::uint32_t, std::uint32_t>>> edges;
+  for (const auto& t : indexed.triangles) {
+    for (std::size_t k = 0; k < 3; ++k) {
+      const std::uint32_t i = t[k], j = t[(k + 1) % 3];
+      if (i > j) continue;  // each edge once: its two triangles run it in opposite directions
+      const double length = (indexed.vertices_L[j] - indexed.vertices_L[i]).norm();
+      if (length >= shortest) edges.push_back({length, {i, j}});
+    }
+  }
+  std::sort(edges.begin(), edges.end(), [](const auto& x, const auto& y) { return x > y; });
+  edges.resize(std::min(edges.size(), ClosedLinkMesh::kLongEdges));
+  for (const auto& [length, edge] : edges) {
+    mesh.edge_start_L.push_back(indexed.vertices_L[edge.first]);
+    mesh.edge_span_L.push_back(indexed.vertices_L[edge.second] - indexed.vertices_L[edge.first]);
+  }
 }
 
 // Clusters the vertices (at most kClusterVertices each), reordering them so each cluster is
@@ -313,6 +340,23 @@ bool closedMeshCrossesPrimitive(const ClosedLinkMesh& mesh, const DeepPoints& de
   return false;
 }
 
+Eigen::Vector3d nearestOnLongEdges(const ClosedLinkMesh& mesh, const Eigen::Vector3d& p) {
+  Eigen::Vector3d best = p;
+  double best2 = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < mesh.edge_start_L.size(); ++i) {
+    const Eigen::Vector3d& a = mesh.edge_start_L[i];
+    const Eigen::Vector3d& d = mesh.edge_span_L[i];
+    const double s = std::clamp((p - a).dot(d) / d.squaredNorm(), 0.0, 1.0);
+    const Eigen::Vector3d x = a + s * d;
+    const double d2 = (x - p).squaredNorm();
+    if (d2 < best2) {
+      best2 = d2;
+      best = x;
+    }
+  }
+  return best;
+}
+
 std::vector<SelfContactElement> selfContactElements(
     const fcl_internal::RobotGeometry& robot, const RobotModel& model,
     const std::vector<std::vector<std::size_t>>& link_elements) {
@@ -351,6 +395,7 @@ std::vector<SelfContactElement> selfContactElements(
       }
       for (const Eigen::Vector3d& v : mesh.vertices_L) closed.box_L.extend(v);
       closed.inner_box_L = innerBox(closed);
+      longEdges(mesh, closed);
       clusterVertices(closed);
     }
   }
@@ -359,16 +404,21 @@ std::vector<SelfContactElement> selfContactElements(
 
 namespace {
 
-// The point of `element` nearest `primitive`'s centre lies deep inside its solid. X_PL_EL takes
+// The point of `element` nearest `primitive`'s centre (its vertex, or a point of a closed mesh's
+// long edges) lies deep inside its solid. X_PL_EL takes
 // the element's link frame to the primitive's.
 bool pointInside(const SelfContactElement& element, const SelfContactElement& primitive,
                  const Eigen::Isometry3d& X_PL_EL) {
   if (element.points_L.empty()) return false;
   const Eigen::Isometry3d X_PE = primitive.X_EL * X_PL_EL;  // element's L to the primitive's E
   const Eigen::Vector3d c_L = X_PE.inverse().translation();
-  // A closed mesh's vertices are its points, in clusters.
+  // A closed mesh's vertices are its points, in clusters; its long edges' points are on its
+  // surface too.
   if (!element.mesh.empty()) {
-    return deepInside(*primitive.primitive, X_PE * extremeVertex(element.mesh, c_L, false));
+    const ClosedLinkMesh& mesh = element.mesh;
+    return deepInside(*primitive.primitive, X_PE * extremeVertex(mesh, c_L, false)) ||
+           (!mesh.edge_start_L.empty() &&
+            deepInside(*primitive.primitive, X_PE * nearestOnLongEdges(mesh, c_L)));
   }
   std::size_t nearest = 0;
   double near2 = std::numeric_limits<double>::infinity();

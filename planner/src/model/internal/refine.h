@@ -80,6 +80,11 @@ struct ClosedLinkMesh {
   // the centroid does not).
   Eigen::AlignedBox3d box_L;
   Eigen::AlignedBox3d inner_box_L;
+  // The longest edges (at most kLongEdges, each at least a third of the box's diagonal): their
+  // points lie on the surface far from any vertex, as along a capsule's side, where another
+  // link may cross it with no vertex inside (crosses).
+  static constexpr std::size_t kLongEdges = 128;
+  std::vector<Eigen::Vector3d> edge_start_L, edge_span_L;  // an edge: start + s * span, s in [0, 1]
   bool empty() const { return planes_L.empty(); }
 };
 
@@ -176,6 +181,9 @@ RefineScratch& refineScratch(const RefineData& data, const RobotModel& model, st
 // Poses `link`'s elements for the current query unless done already.
 void refinePoseLink(const RefineData& data, RefineScratch& r, const RobotData& robot, int link);
 
+// The point of the mesh's long edges (ClosedLinkMesh::edge_*_L) nearest p, in L: a point of its
+// surface; p itself when it has none.
+Eigen::Vector3d nearestOnLongEdges(const ClosedLinkMesh& mesh, const Eigen::Vector3d& p_L);
 // Without FCL: a witness point of one of `link`'s elements lies kCertainDepth inside a primitive
 // obstacle, so FCL finds a contact (its triangle, or its solid, meets the obstacle's solid); or
 // a closed mesh element crosses the obstacle (closedMeshCrossesPrimitive).
