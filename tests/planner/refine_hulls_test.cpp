@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "exact_and_fcl.h"
 #include "octomotion/motion/convex_gap.h"
 #include "octomotion/planner/model/collision_model.h"
 #include "octomotion/planner/reference/fcl_collision_model.h"
@@ -94,13 +95,11 @@ TEST(RefineHulls, RefinedModelClearsPairsByHullsAndAgreesWithFcl) {
   if (!std::filesystem::exists(kPanda + "/panda.urdf")) GTEST_SKIP() << "no Panda";
   RobotModel robot = RobotModel::fromUrdfFile(kPanda + "/panda.urdf");
   robot.loadSrdfFile(kPanda + "/panda.srdf");
-  const EnvironmentGeometry none = EnvironmentGeometry::load({});
-  CollisionModelOptions options;
-  options.refine = RefineMode::kExact;
-  const OctreeCollisionModel model(robot, none, options);
-  const FclCollisionModel fcl(robot, none);
-  auto exact = fcl.makeScratch();
-  CheckScratch scratch = model.makeScratch();
+  test::ExactAndFcl setup(robot);
+  const OctreeCollisionModel& model = setup.model;
+  const FclCollisionModel& fcl = setup.fcl;
+  FclCollisionModel::ScratchPtr& exact = setup.exact;
+  CheckScratch& scratch = setup.scratch;
   std::mt19937_64 rng(0x4e12);
   std::size_t disagreements = 0, contacts = 0;
   for (int state = 0; state < 1500; ++state) {

@@ -20,6 +20,7 @@
 #include <variant>
 #include <vector>
 
+#include "exact_and_fcl.h"
 #include "joint_states.h"
 #include "octomotion/planner/model/collision_model.h"
 #include "octomotion/planner/reference/fcl_collision_model.h"
@@ -33,13 +34,11 @@ const std::string kPanda = std::string(OCTOMOTION_SOURCE_DIR) + "/../shared/data
 // Checks `robot` alone at uniform states: every certain self contact is an FCL contact, the
 // refined answer is FCL's everywhere, and most of FCL's self contacts are called certain.
 void expectCertainSelfContactsAreFcl(const RobotModel& robot, std::uint64_t seed) {
-  const EnvironmentGeometry none = EnvironmentGeometry::load({});
-  CollisionModelOptions options;
-  options.refine = RefineMode::kExact;
-  const OctreeCollisionModel model(robot, none, options);
-  const FclCollisionModel fcl(robot, none);
-  auto exact = fcl.makeScratch();
-  CheckScratch scratch = model.makeScratch();
+  test::ExactAndFcl setup(robot);
+  const OctreeCollisionModel& model = setup.model;
+  const FclCollisionModel& fcl = setup.fcl;
+  FclCollisionModel::ScratchPtr& exact = setup.exact;
+  CheckScratch& scratch = setup.scratch;
   std::size_t certain_states = 0, fcl_contacts = 0, wrong = 0, disagreements = 0, state = 0;
   for (const std::vector<double>& q : test::uniformJointStates(robot, 3000, seed)) {
     ++state;
@@ -116,13 +115,11 @@ EnvironmentGeometry obstaclesAroundTheBase() {
 // the orders change as pairs and links turn from free to contact and back: the answers stay
 // FCL's on every state, with contacts in both halves.
 void expectAdaptiveOrdersKeepFclAnswers(const RobotModel& robot, std::uint64_t seed) {
-  const EnvironmentGeometry obstacles = obstaclesAroundTheBase();
-  CollisionModelOptions options;
-  options.refine = RefineMode::kExact;
-  const OctreeCollisionModel model(robot, obstacles, options);
-  const FclCollisionModel fcl(robot, obstacles);
-  auto exact = fcl.makeScratch();
-  CheckScratch scratch = model.makeScratch();
+  test::ExactAndFcl setup(robot, obstaclesAroundTheBase());
+  const OctreeCollisionModel& model = setup.model;
+  const FclCollisionModel& fcl = setup.fcl;
+  FclCollisionModel::ScratchPtr& exact = setup.exact;
+  CheckScratch& scratch = setup.scratch;
   std::mt19937_64 rng(seed);
   std::size_t self_contacts = 0, environment_contacts = 0, disagreements = 0;
   for (std::vector<double> q : test::uniformJointStates(robot, 150, seed)) {
@@ -186,13 +183,11 @@ TEST(RefineSelfContact, CapsulesCrossingAtTheirSidesAreCertainContacts) {
 </robot>)";
   const RobotModel robot = RobotModel::fromUrdfString(
       urdf, "cross.urdf", std::string(OCTOMOTION_SOURCE_DIR) + "/robots/meshes/octo6");
-  const EnvironmentGeometry none = EnvironmentGeometry::load({});
-  CollisionModelOptions options;
-  options.refine = RefineMode::kExact;
-  const OctreeCollisionModel model(robot, none, options);
-  const FclCollisionModel fcl(robot, none);
-  auto exact = fcl.makeScratch();
-  CheckScratch scratch = model.makeScratch();
+  test::ExactAndFcl setup(robot);
+  const OctreeCollisionModel& model = setup.model;
+  const FclCollisionModel& fcl = setup.fcl;
+  FclCollisionModel::ScratchPtr& exact = setup.exact;
+  CheckScratch& scratch = setup.scratch;
   for (int k = 0; k < 24; ++k) {
     const double q = -3.1 + 6.2 * k / 23;
     SCOPED_TRACE(q);
@@ -210,13 +205,11 @@ TEST(RefineSelfContact, LinksClearedByObjectHullsAreFreeForFcl) {
   if (!std::filesystem::exists(kPanda + "/panda.urdf")) GTEST_SKIP() << "no Panda";
   RobotModel robot = RobotModel::fromUrdfFile(kPanda + "/panda.urdf");
   robot.loadSrdfFile(kPanda + "/panda.srdf");
-  const EnvironmentGeometry environment = obstaclesAroundTheBase();
-  CollisionModelOptions options;
-  options.refine = RefineMode::kExact;
-  const OctreeCollisionModel model(robot, environment, options);
-  const FclCollisionModel fcl(robot, environment);
-  auto exact = fcl.makeScratch();
-  CheckScratch scratch = model.makeScratch();
+  test::ExactAndFcl setup(robot, obstaclesAroundTheBase());
+  const OctreeCollisionModel& model = setup.model;
+  const FclCollisionModel& fcl = setup.fcl;
+  FclCollisionModel::ScratchPtr& exact = setup.exact;
+  CheckScratch& scratch = setup.scratch;
   std::size_t contacts = 0, disagreements = 0;
   for (const std::vector<double>& q : test::uniformJointStates(robot, 3000, 0x0b1e)) {
     fcl.setConfiguration(q.data(), q.size(), Eigen::Isometry3d::Identity(), *exact);

@@ -314,6 +314,15 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
     }
     return true;
   };
+  // A proof's collision check of the state in t.q, of the halves asked (one at least).
+  auto proofCollides = [&](bool environment, bool self) {
+    (environment ? state_checks_ : self_checks_).fetch_add(1, std::memory_order_relaxed);
+    ++tally.proof_checks;
+    BackendScratch& scratch = *t.backend;
+    return environment && self ? backend.inCollision(t.q.data(), n, t.X_WB, scratch)
+           : environment       ? backend.environmentInCollision(t.q.data(), n, t.X_WB, scratch)
+                               : backend.selfInCollision(t.q.data(), n, t.X_WB, scratch);
+  };
   // Checks the state at t_edge into a new slot: the environment and/or the self pairs, then
   // the active links' clearances and the active pairs' distances when asked.
   // A slot's values stay 0 when its state is invalid.
@@ -330,14 +339,8 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
     const bool values_first = exact && t_edge != 0.0 && !screenedFree(t_edge);
     if (screenedFree(t_edge) || values_first) {
       backend.setPose(t.q.data(), n, t.X_WB, scratch);  // its clearances only
-    } else {
-      (environment ? state_checks_ : self_checks_).fetch_add(1, std::memory_order_relaxed);
-      ++tally.proof_checks;
-      const bool collides =
-          environment && self ? backend.inCollision(t.q.data(), n, t.X_WB, scratch)
-          : environment       ? backend.environmentInCollision(t.q.data(), n, t.X_WB, scratch)
-                              : backend.selfInCollision(t.q.data(), n, t.X_WB, scratch);
-      if (collides) return false;
+    } else if (proofCollides(environment, self)) {
+      return false;
     }
     if (environment && clearances && has_clearance) {
       for (std::size_t k = 0; k < t.active_links.size(); ++k) {
@@ -395,18 +398,10 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
       const bool check_self =
           self && !(distances && allFree(t.active_pairs, t.distance.data() + slot * pairs,
                                          in ? in->pairs_done : 0));
-      if (check_environment || check_self) {
-        (check_environment ? state_checks_ : self_checks_).fetch_add(1, std::memory_order_relaxed);
-        ++tally.proof_checks;
-        const bool collides =
-            check_environment && check_self ? backend.inCollision(t.q.data(), n, t.X_WB, scratch)
-            : check_environment ? backend.environmentInCollision(t.q.data(), n, t.X_WB, scratch)
-                                : backend.selfInCollision(t.q.data(), n, t.X_WB, scratch);
-        if (collides) {
-          std::fill_n(t.clearance.data() + slot * stride, stride, 0.0);
-          std::fill_n(t.distance.data() + slot * pairs, pairs, 0.0);
-          return false;
-        }
+      if ((check_environment || check_self) && proofCollides(check_environment, check_self)) {
+        std::fill_n(t.clearance.data() + slot * stride, stride, 0.0);
+        std::fill_n(t.distance.data() + slot * pairs, pairs, 0.0);
+        return false;
       }
     }
     return true;
