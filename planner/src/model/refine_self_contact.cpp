@@ -4,9 +4,9 @@
 // kCertainDepth outside: the first's surface is connected and has points on both sides of the
 // second's, so the two surfaces cross, and FCL's mesh test (triangle against triangle) reports
 // the crossing. A primitive is a solid for FCL: a point of a mesh's surface (on a triangle FCL
-// tests) kCertainDepth inside it is a contact, so is a closed
-// mesh crossing it (closedMeshCrossesPrimitive) or another primitive overlapping it
-// (primitivesOverlap). Such a pair needs neither its voxels nor FCL, and the check stops there.
+// tests) kCertainDepth inside it is a contact, so is a closed mesh crossing it
+// (closedMeshCrossesPrimitive) or another primitive overlapping it (primitivesOverlap). Such a
+// pair needs neither its voxels nor FCL, and the check stops there.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -181,6 +181,25 @@ const Eigen::Vector3d& extremeVertex(const ClosedLinkMesh& mesh, const Eigen::Ve
   return mesh.vertices_L[best];
 }
 
+// The point of the mesh's long edges nearest p (in L): a point of its surface; p itself when
+// it has none.
+Eigen::Vector3d nearestOnLongEdges(const ClosedLinkMesh& mesh, const Eigen::Vector3d& p) {
+  Eigen::Vector3d best = p;
+  double best2 = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < mesh.edge_start_L.size(); ++i) {
+    const Eigen::Vector3d& a = mesh.edge_start_L[i];
+    const Eigen::Vector3d& d = mesh.edge_span_L[i];
+    const double s = std::clamp((p - a).dot(d) / d.squaredNorm(), 0.0, 1.0);
+    const Eigen::Vector3d x = a + s * d;
+    const double d2 = (x - p).squaredNorm();
+    if (d2 < best2) {
+      best2 = d2;
+      best = x;
+    }
+  }
+  return best;
+}
+
 // A point of `mover`'s surface (placed in `other`'s frame by X_OM) deep inside `other` and one
 // deep outside: mover's surface is connected, so it crosses other's, and two of their triangles
 // meet. The inside candidates are mover's vertex nearest other's centroid, then the nearest
@@ -340,23 +359,6 @@ bool closedMeshCrossesPrimitive(const ClosedLinkMesh& mesh, const DeepPoints& de
   return false;
 }
 
-Eigen::Vector3d nearestOnLongEdges(const ClosedLinkMesh& mesh, const Eigen::Vector3d& p) {
-  Eigen::Vector3d best = p;
-  double best2 = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i < mesh.edge_start_L.size(); ++i) {
-    const Eigen::Vector3d& a = mesh.edge_start_L[i];
-    const Eigen::Vector3d& d = mesh.edge_span_L[i];
-    const double s = std::clamp((p - a).dot(d) / d.squaredNorm(), 0.0, 1.0);
-    const Eigen::Vector3d x = a + s * d;
-    const double d2 = (x - p).squaredNorm();
-    if (d2 < best2) {
-      best2 = d2;
-      best = x;
-    }
-  }
-  return best;
-}
-
 std::vector<SelfContactElement> selfContactElements(
     const fcl_internal::RobotGeometry& robot, const RobotModel& model,
     const std::vector<std::vector<std::size_t>>& link_elements) {
@@ -405,8 +407,8 @@ std::vector<SelfContactElement> selfContactElements(
 namespace {
 
 // The point of `element` nearest `primitive`'s centre (its vertex, or a point of a closed mesh's
-// long edges) lies deep inside its solid. X_PL_EL takes
-// the element's link frame to the primitive's.
+// long edges) lies deep inside its solid. X_PL_EL takes the element's link frame to the
+// primitive's.
 bool pointInside(const SelfContactElement& element, const SelfContactElement& primitive,
                  const Eigen::Isometry3d& X_PL_EL) {
   if (element.points_L.empty()) return false;

@@ -336,8 +336,9 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
     // Exact answers: a positive clearance (distance) is the link's (pair's) exact verdict, so
     // the values come first and the collision check runs only for a half they leave open. Not at
     // s1, whose full check also covers the links and pairs the edge does not move.
-    const bool values_first = exact && t_edge != 0.0 && !screenedFree(t_edge);
-    if (screenedFree(t_edge) || values_first) {
+    const bool screened = screenedFree(t_edge);
+    const bool values_first = exact && t_edge != 0.0 && !screened;
+    if (screened || values_first) {
       backend.setPose(t.q.data(), n, t.X_WB, scratch);  // its clearances only
     } else if (proofCollides(environment, self)) {
       return false;

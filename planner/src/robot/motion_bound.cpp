@@ -150,8 +150,9 @@ std::vector<float> axisRadiusTable(Points points, double slack) {
           return along <= norm * sin_rho ? norm : x.cross(c).norm() * cos_rho + along * sin_rho;
         };
         double best = 0.0;
-        for (const PointCluster& g : clusters)
+        for (const PointCluster& g : clusters) {
           best = std::max(best, distance(points[order[g.begin]]));
+        }
         for (const PointCluster& g : clusters) {
           if (distance(g.centre) + g.radius <= best) continue;
           for (std::uint32_t m = g.begin; m < g.end; ++m) {

@@ -181,9 +181,6 @@ RefineScratch& refineScratch(const RefineData& data, const RobotModel& model, st
 // Poses `link`'s elements for the current query unless done already.
 void refinePoseLink(const RefineData& data, RefineScratch& r, const RobotData& robot, int link);
 
-// The point of the mesh's long edges (ClosedLinkMesh::edge_*_L) nearest p, in L: a point of its
-// surface; p itself when it has none.
-Eigen::Vector3d nearestOnLongEdges(const ClosedLinkMesh& mesh, const Eigen::Vector3d& p_L);
 // Without FCL: a witness point of one of `link`'s elements lies kCertainDepth inside a primitive
 // obstacle, so FCL finds a contact (its triangle, or its solid, meets the obstacle's solid); or
 // a closed mesh element crosses the obstacle (closedMeshCrossesPrimitive).
