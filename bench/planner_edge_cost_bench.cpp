@@ -31,6 +31,7 @@
 #include <string>
 #include <vector>
 
+#include <ompl/base/PlannerTerminationCondition.h>
 #include <ompl/util/Console.h>
 
 #include "mbm_problems.h"
@@ -91,7 +92,8 @@ void run(benchmark::State& state, CheckerKind checker, int screen_levels) {
       }
       validator->setScreenLevels(screen_levels);
       validator->resetCounts();
-      const ob::PlannerStatus status = scene.setup->solve(scene.spec.problem.time);
+      const ob::PlannerStatus status =
+          scene.setup->solve(ob::timedPlannerTerminationCondition(scene.spec.problem.time));
       ++plans;
       solved += status == ob::PlannerStatus::EXACT_SOLUTION ? 1 : 0;
       times.push_back(scene.setup->getLastPlanComputationTime());

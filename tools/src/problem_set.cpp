@@ -13,6 +13,7 @@
 #include <utility>
 
 #include <ompl/base/MotionValidator.h>
+#include <ompl/base/PlannerTerminationCondition.h>
 #include <ompl/base/StateValidityChecker.h>
 
 #include "octomotion/error.h"
@@ -181,7 +182,10 @@ void planOnce(PlanningScene& scene, const CountingStateChecker& states,
   ss.clear();
   states.take();
   motions.take();
-  const ob::PlannerStatus status = ss.solve(scene.spec.problem.time);
+  // The time limit checked in this thread, as `plan` does (planWithOmpl): the plan's time is
+  // the planner's, not rounded up to a helper thread's next millisecond wake-up.
+  const ob::PlannerStatus status =
+      ss.solve(ob::timedPlannerTerminationCondition(scene.spec.problem.time));
   row.seconds = ss.getLastPlanComputationTime();
   row.state_checks = states.take();
   row.motion_checks = motions.take();

@@ -8,6 +8,7 @@
 #include <ostream>
 #include <sstream>
 
+#include <ompl/base/PlannerTerminationCondition.h>
 #include <ompl/base/spaces/RealVectorStateSpace.h>
 #include <ompl/base/spaces/SE3StateSpace.h>
 #include <ompl/geometric/planners/est/EST.h>
@@ -484,7 +485,10 @@ PlanResult planWithOmpl(PlanningScene& scene, double interpolation) {
   PlanResult result;
   og::SimpleSetup& ss = *scene.setup;
   ss.setup();
-  const ob::PlannerStatus status = ss.solve(scene.spec.problem.time);
+  // The time limit checked in this thread: SimpleSetup::solve(t) with t >= 1 s checks it from a
+  // helper thread that wakes every millisecond and returns only at its next wake-up.
+  const ob::PlannerStatus status =
+      ss.solve(ob::timedPlannerTerminationCondition(scene.spec.problem.time));
   result.seconds = ss.getLastPlanComputationTime();
   result.solved = status == ob::PlannerStatus::EXACT_SOLUTION;
   if (!result.solved) return result;
