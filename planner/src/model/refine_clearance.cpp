@@ -31,6 +31,13 @@ namespace {
 double hullTrusted(const WorldGrid& grid) {
   return grid.voxelSize() / 8;
 }
+// Against a primitive obstacle, whose hull is the shape itself or tight around it, a link's
+// hull distance differs from FCL's only where the link's hull is loose (a concave part facing
+// the obstacle), and it is trusted down to a 64th of a voxel: nearer contact than the validator's
+// minimum travel, where FCL's distance would cost more than the bisection it saves.
+double hullTrusted(const WorldGrid& grid, const RefineObject& object) {
+  return object.primitive ? grid.voxelSize() / 64 : hullTrusted(grid);
+}
 
 double distanceToBox(const fcl::AABBd& box, const Eigen::Vector3d& p) {
   return (box.min_ - p).cwiseMax(p - box.max_).cwiseMax(0.0).norm();
@@ -38,9 +45,9 @@ double distanceToBox(const fcl::AABBd& box, const Eigen::Vector3d& p) {
 
 // A lower bound on the distance from `link`'s elements to the environment's objects, or `cap`
 // when at least `cap`: per object, the hulls' bound when it reaches the best so far or is above
-// `trusted`, else FCL's distance.
+// the object's hullTrusted, else FCL's distance.
 double refineLinkDistance(const RefineData& data, RefineScratch& r, const RobotData& robot,
-                          int link, double cap, double trusted) {
+                          int link, double cap, const WorldGrid& grid) {
   const ConvexPoints& hull_L = data.link_hulls_L[static_cast<std::size_t>(link)];
   const Eigen::Isometry3d& X_WL = robot.linkPose(link);
   // The link's hull lies in this ball: most objects are farther than it is from what is asked.
@@ -54,7 +61,7 @@ double refineLinkDistance(const RefineData& data, RefineScratch& r, const RobotD
       if (distanceToBox(object.box_W, centre_W) - reach >= best) continue;
       if (!object.hull_O.empty()) {
         const double h = convexDistanceBelow(object.hull_O, hull_L, object.X_OW * X_WL, best);
-        if (h >= best || h > trusted) {
+        if (h >= best || h > hullTrusted(grid, object)) {
           ++r.hull_distances;
           best = std::min(best, h);
           continue;
@@ -87,7 +94,6 @@ void OctreeCollisionModel::refineClearancesPerLink(const CheckScratch& scratch, 
   // Farther than two voxels the grid's bound is within its own looseness of the distance, and
   // a tighter bound costs more than the bisection the looser one asks for.
   const double near = 2 * grid().voxelSize();
-  const double trusted = detail::hullTrusted(grid());
   detail::RefineScratch* r = nullptr;  // made on the first link asked
   for (int l = 0; l < robot_.linkCount(); ++l) {
     if (caps[l] <= 0 || per_link[l] >= caps[l] || per_link[l] >= near ||
@@ -96,7 +102,7 @@ void OctreeCollisionModel::refineClearancesPerLink(const CheckScratch& scratch, 
     }
     if (r == nullptr) r = &detail::refineScratch(*refine_, robot_, id_, scratch.refine);
     per_link[l] = std::max(
-        per_link[l], detail::refineLinkDistance(*refine_, *r, scratch.robot, l, caps[l], trusted));
+        per_link[l], detail::refineLinkDistance(*refine_, *r, scratch.robot, l, caps[l], grid()));
   }
 }
 
