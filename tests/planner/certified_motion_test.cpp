@@ -43,7 +43,8 @@ std::string scenePath(const std::string& name) {
 }
 
 // For random straight-line motions in q, the polyline through FK samples of every sampled point
-// (shorter than its path) stays within LinkMotionBound::linkBound.
+// (shorter than its path) stays within LinkMotionBound::linkBound; over the first and last
+// parts of the motion, within the posed bound from that part's posed end (linkRate, growth).
 void expectArmBoundHolds(const RobotModel& robot, int motions, std::uint64_t seed) {
   const LinkMotionBound bound(robot);
   CollisionMeshes meshes(false, false);
@@ -53,7 +54,9 @@ void expectArmBoundHolds(const RobotModel& robot, int motions, std::uint64_t see
   RobotData data = robot.makeData();
   const auto n = static_cast<std::size_t>(robot.variableCount());
   constexpr int kSteps = 64;
-  int tight_links = 0;
+  int tight_links = 0, tight_posed = 0, tighter_posed = 0;
+  LinkMotionBound::EdgeTerms terms;
+  std::vector<double> arms_start(bound.armCount()), arms_end(bound.armCount());
   for (int m = 0; m < motions; ++m) {
     std::vector<double> q1(n), q2(n), dq(n), q(n);
     for (std::size_t v = 0; v < n; ++v) {
@@ -62,32 +65,61 @@ void expectArmBoundHolds(const RobotModel& robot, int motions, std::uint64_t see
       q2[v] = std::uniform_real_distribution<double>(var.lower, var.upper)(rng);
       dq[v] = q2[v] - q1[v];
     }
+    bound.edgeTerms(dq.data(), terms);
+    // Per link and point, its polyline's length from the start to each step.
     std::vector<std::vector<Eigen::Vector3d>> previous(points.size());
-    std::vector<std::vector<double>> travelled(points.size());
+    std::vector<std::vector<std::vector<double>>> travelled(points.size());
     for (int k = 0; k <= kSteps; ++k) {
       for (std::size_t v = 0; v < n; ++v) q[v] = q1[v] + dq[v] * k / kSteps;
       robot.forwardKinematics(q.data(), n, data);
+      if (k == 0) bound.posedArms(data, arms_start.data());
+      if (k == kSteps) bound.posedArms(data, arms_end.data());
       for (std::size_t l = 0; l < points.size(); ++l) {
         const Eigen::Isometry3d& X_WL = data.linkPose(static_cast<int>(l));
-        travelled[l].resize(points[l].size(), 0.0);
+        travelled[l].resize(points[l].size());
         previous[l].resize(points[l].size());
         for (std::size_t i = 0; i < points[l].size(); ++i) {
           const Eigen::Vector3d p_W = X_WL * points[l][i];
-          if (k > 0) travelled[l][i] += (p_W - previous[l][i]).norm();
+          travelled[l][i].push_back(k > 0 ? travelled[l][i].back() + (p_W - previous[l][i]).norm()
+                                          : 0.0);
           previous[l][i] = p_W;
         }
       }
     }
     for (std::size_t l = 0; l < points.size(); ++l) {
       if (points[l].empty()) continue;
-      const double most = *std::max_element(travelled[l].begin(), travelled[l].end());
-      const double limit = bound.linkBound(static_cast<int>(l), dq.data());
-      EXPECT_LE(most, limit + 1e-9) << robot.link(static_cast<int>(l)).name << " motion " << m;
-      tight_links += most > 0.25 * limit ? 1 : 0;
+      const int link = static_cast<int>(l);
+      // The most any point travels between steps k0 and k1.
+      auto most = [&](int k0, int k1) {
+        double longest = 0.0;
+        for (const std::vector<double>& t : travelled[l])
+          longest = std::max(longest, t[k1] - t[k0]);
+        return longest;
+      };
+      const double limit = bound.linkBound(link, dq.data());
+      EXPECT_LE(most(0, kSteps), limit + 1e-9) << robot.link(link).name << " motion " << m;
+      tight_links += most(0, kSteps) > 0.25 * limit ? 1 : 0;
+      const double growth = terms.link_growth[l];
+      for (int part : {kSteps / 8, kSteps / 2, kSteps}) {
+        const double s = static_cast<double>(part) / kSteps;
+        for (const bool from_start : {true, false}) {
+          const double rate =
+              bound.linkRate(link, terms, from_start ? arms_start.data() : arms_end.data());
+          const double posed = rate * s + 0.5 * growth * s * s;
+          const double travel = from_start ? most(0, part) : most(kSteps - part, kSteps);
+          EXPECT_LE(travel, posed + 1e-9) << robot.link(link).name << " motion " << m << " part "
+                                          << s << " from " << (from_start ? "start" : "end");
+          tight_posed += travel > 0.5 * posed ? 1 : 0;
+          tighter_posed += posed < 0.75 * limit * s ? 1 : 0;
+        }
+      }
     }
   }
-  // A bound that is never approached would hide a wrong lever (e.g. one that ignores a joint).
+  // A bound that is never approached would hide a wrong lever (e.g. one that ignores a joint);
+  // a posed bound never tighter than the lever's would be of no use.
   EXPECT_GT(tight_links, 0);
+  EXPECT_GT(tight_posed, 0);
+  EXPECT_GT(tighter_posed, 0);
 }
 
 TEST(LinkMotionBound, NoPointOfOcto7TravelsFartherThanItsBound) {

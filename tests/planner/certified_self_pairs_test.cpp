@@ -80,7 +80,8 @@ int commonAncestor(const RobotModel& robot, int a, int b) {
 // For random straight-line motions in q, in the frame of the pair's common ancestor (where the
 // distance between the two links is measured as in the world): the longest polyline of a
 // sampled point of link a plus the longest of link b (each shorter than its path) stays within
-// pairBound, which therefore bounds how much the pair's distance can change.
+// pairBound, which therefore bounds how much the pair's distance can change; over the first and
+// last parts of the motion, within the posed bound from that part's posed end (pairRate, growth).
 void expectPairBoundHolds(const RobotModel& robot, int motions, std::uint64_t seed) {
   SCOPED_TRACE(robot.name());
   const LinkMotionBound bound(robot);
@@ -96,17 +97,22 @@ void expectPairBoundHolds(const RobotModel& robot, int motions, std::uint64_t se
   std::vector<int> ancestor;
   for (const auto& [a, b] : bound.pairs()) ancestor.push_back(commonAncestor(robot, a, b));
   constexpr int kSteps = 64;
-  int tight = 0;
+  int tight = 0, tight_posed = 0, tighter_posed = 0;
+  LinkMotionBound::EdgeTerms terms;
+  std::vector<double> arms_start(bound.armCount()), arms_end(bound.armCount());
   for (int m = 0; m < motions; ++m) {
     const std::vector<double> q1 = uniformQ(robot, rng), q2 = uniformQ(robot, rng);
     std::vector<double> dq(n), q(n);
     for (std::size_t v = 0; v < n; ++v) dq[v] = q2[v] - q1[v];
-    // Per pair and side (its first link, its second): each point's polyline so far.
-    std::vector<std::vector<double>> travelled(2 * pairs);
+    bound.edgeTerms(dq.data(), terms);
+    // Per pair and side (its first link, its second): each point's polyline to each step.
+    std::vector<std::vector<std::vector<double>>> travelled(2 * pairs);
     std::vector<std::vector<Eigen::Vector3d>> previous(2 * pairs);
     for (int k = 0; k <= kSteps; ++k) {
       for (std::size_t v = 0; v < n; ++v) q[v] = q1[v] + dq[v] * k / kSteps;
       robot.forwardKinematics(q.data(), n, data);
+      if (k == 0) bound.posedArms(data, arms_start.data());
+      if (k == kSteps) bound.posedArms(data, arms_end.data());
       for (std::size_t p = 0; p < pairs; ++p) {
         ASSERT_GE(ancestor[p], 0);
         const Eigen::Isometry3d X_CW = data.linkPose(ancestor[p]).inverse();
@@ -116,30 +122,54 @@ void expectPairBoundHolds(const RobotModel& robot, int motions, std::uint64_t se
           const auto& pts = points[static_cast<std::size_t>(link)];
           auto& t = travelled[2 * p + static_cast<std::size_t>(side)];
           auto& prev = previous[2 * p + static_cast<std::size_t>(side)];
-          t.resize(pts.size(), 0.0);
+          t.resize(pts.size());
           prev.resize(pts.size());
           for (std::size_t i = 0; i < pts.size(); ++i) {
             const Eigen::Vector3d x = X * pts[i];
-            if (k > 0) t[i] += (x - prev[i]).norm();
+            t[i].push_back(k > 0 ? t[i].back() + (x - prev[i]).norm() : 0.0);
             prev[i] = x;
           }
         }
       }
     }
     for (std::size_t p = 0; p < pairs; ++p) {
+      // The most a point of each side travels between steps k0 and k1, summed.
+      auto most = [&](int k0, int k1) {
+        double sum = 0;
+        for (int side = 0; side < 2; ++side) {
+          double longest = 0;
+          for (const auto& t : travelled[2 * p + static_cast<std::size_t>(side)]) {
+            longest = std::max(longest,
+                               t[static_cast<std::size_t>(k1)] - t[static_cast<std::size_t>(k0)]);
+          }
+          sum += longest;
+        }
+        return sum;
+      };
+      const std::string names = robot.link(bound.pairs()[p].first).name + " / " +
+                                robot.link(bound.pairs()[p].second).name;
       const double limit = bound.pairBound(p, dq.data());
-      double most = 0;
-      for (int side = 0; side < 2; ++side) {
-        const auto& t = travelled[2 * p + static_cast<std::size_t>(side)];
-        if (!t.empty()) most += *std::max_element(t.begin(), t.end());
+      EXPECT_LE(most(0, kSteps), limit + 1e-9) << names << " motion " << m;
+      tight += most(0, kSteps) > 0.25 * limit ? 1 : 0;
+      for (int part : {kSteps / 8, kSteps / 2, kSteps}) {
+        const double s = static_cast<double>(part) / kSteps;
+        for (const bool from_start : {true, false}) {
+          const double rate =
+              bound.pairRate(p, terms, from_start ? arms_start.data() : arms_end.data());
+          const double posed = rate * s + 0.5 * terms.pair_growth[p] * s * s;
+          const double travel = from_start ? most(0, part) : most(kSteps - part, kSteps);
+          EXPECT_LE(travel, posed + 1e-9) << names << " motion " << m << " part " << s;
+          tight_posed += travel > 0.5 * posed ? 1 : 0;
+          tighter_posed += posed < 0.75 * limit * s ? 1 : 0;
+        }
       }
-      EXPECT_LE(most, limit + 1e-9) << robot.link(bound.pairs()[p].first).name << " / "
-                                    << robot.link(bound.pairs()[p].second).name << " motion " << m;
-      tight += most > 0.25 * limit ? 1 : 0;
     }
   }
-  // A bound never approached would hide a wrong lever (or a joint wrongly left out).
+  // A bound never approached would hide a wrong lever (or a joint wrongly left out); a posed
+  // bound never tighter than the levers' would be of no use.
   EXPECT_GT(tight, 0);
+  EXPECT_GT(tight_posed, 0);
+  EXPECT_GT(tighter_posed, 0);
 }
 
 TEST(PairMotionBound, Octo7sPairsTravelNoFartherThanTheirBound) {

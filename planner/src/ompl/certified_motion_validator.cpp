@@ -37,60 +37,11 @@ thread_local EdgeTally tally;
 
 }  // namespace
 
-struct CertifiedMotionValidator::AtomicCounts {
-  struct Edges {
-    std::atomic<std::size_t> edges{0}, screen_checks{0}, proof_checks{0}, clearance_states{0},
-        pair_distances{0}, table_pairs{0}, depth{0}, nanoseconds{0}, micrometres{0};
-  };
-  Edges accepted, rejected;
-  std::atomic<std::size_t> rejected_by_screen{0}, remembered_ends{0};
-};
-
 void CertifiedMotionValidator::setScreenLevels(int levels) {
   if (levels < 0 || levels > 16) {
     throw InvalidArgument("CertifiedMotionValidator: the screen's levels must be within 0..16");
   }
   screen_levels_ = levels;
-}
-
-CertifiedMotionValidator::Counts CertifiedMotionValidator::counts() const {
-  auto load = [](const AtomicCounts::Edges& e) {
-    EdgeCounts c;
-    c.edges = e.edges.load(std::memory_order_relaxed);
-    c.screen_checks = e.screen_checks.load(std::memory_order_relaxed);
-    c.proof_checks = e.proof_checks.load(std::memory_order_relaxed);
-    c.clearance_states = e.clearance_states.load(std::memory_order_relaxed);
-    c.pair_distances = e.pair_distances.load(std::memory_order_relaxed);
-    c.table_pairs = e.table_pairs.load(std::memory_order_relaxed);
-    c.depth = e.depth.load(std::memory_order_relaxed);
-    c.seconds = 1e-9 * static_cast<double>(e.nanoseconds.load(std::memory_order_relaxed));
-    c.travel = 1e-6 * static_cast<double>(e.micrometres.load(std::memory_order_relaxed));
-    return c;
-  };
-  Counts c;
-  c.accepted = load(counts_->accepted);
-  c.rejected = load(counts_->rejected);
-  c.rejected_by_screen = counts_->rejected_by_screen.load(std::memory_order_relaxed);
-  c.remembered_ends = counts_->remembered_ends.load(std::memory_order_relaxed);
-  return c;
-}
-
-void CertifiedMotionValidator::resetCounts() const {
-  state_checks_ = 0;
-  self_checks_ = 0;
-  for (AtomicCounts::Edges* e : {&counts_->accepted, &counts_->rejected}) {
-    e->edges = 0;
-    e->screen_checks = 0;
-    e->proof_checks = 0;
-    e->clearance_states = 0;
-    e->pair_distances = 0;
-    e->table_pairs = 0;
-    e->depth = 0;
-    e->nanoseconds = 0;
-    e->micrometres = 0;
-  }
-  counts_->rejected_by_screen = 0;
-  counts_->remembered_ends = 0;
 }
 
 CertifiedMotionValidator::CertifiedMotionValidator(const ob::SpaceInformationPtr& si,
@@ -266,24 +217,50 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
   tally.travel = max_bound;
   // Exact answers: the travel below which an unproven interval rejects the edge.
   const double min_travel = resolution_ * kExactMinTravel;
-  // What an evaluated state's clearance (distance) of the k-th active link (pair) i must reach,
-  // above which it decides nothing more: capped there, so FCL and the grid stop early. At an
-  // end (no interval), the whole edge's bound. At the midpoint of [a, b] (bound B there), enough
-  // to prove both halves at once, B / 2 - min(value at a, value at b), plus B / 1024; 0 (not
-  // computed) for one already proven over [a, b].
-  auto capOf = [&](const Scratch::Interval* in, std::size_t k, std::size_t i, double whole,
-                   const std::vector<double>& values, std::size_t width, std::uint64_t done) {
-    if (!in) return whole;
-    if (k < 64 && (done >> k & 1)) return 0.0;
-    const double b = whole * (in->b - in->a);
-    const double lo = std::min(values[in->slot_a * width + i], values[in->slot_b * width + i]);
-    return std::max(0.5 * b - lo, 0.0) + b / 1024;
-  };
   t.caps.assign(links, 0.0);
   const bool direct = !robot.isFreeFlying();  // q(t) without OMPL's interpolation
+  // Fixed-base robots: bounds from the poses at an interval's ends (LinkMotionBound's posed
+  // bounds), tighter than the edge's where the arm is not stretched.
+  const std::size_t arm_count = direct ? bound_->armCount() : 0;
+  if (direct) bound_->edgeTerms(t.dq.data(), t.terms);
+  t.arms.resize(arm_count);
+  t.link_rate.clear();
+  t.pair_rate.clear();
+  constexpr double kNoRate = std::numeric_limits<double>::infinity();
   const ob::SpaceInformation* si = si_;
   if (!direct) t.useSpace(si->getStateSpace());
   const std::size_t stride = std::max<std::size_t>(links, 1);
+  // What an evaluated state's (in `slot`) clearance (distance) of the k-th active link (pair) i
+  // must reach, above which it decides nothing more: capped there, so the grid, the hulls and FCL
+  // stop early. At an end (no interval), the whole edge's bound. At the midpoint of [a, b],
+  // enough to prove both halves at once, each half's bound less the value at its outer end, plus
+  // a 512th of the half's bound; 0 (not computed) for one already proven over [a, b]. A half's
+  // bound is the edge's, or the posed bound from the end of it with the smaller rate.
+  auto capOf = [&](const Scratch::Interval* in, std::size_t slot, std::size_t k, std::size_t i,
+                   bool pair) {
+    const double whole = pair ? t.pair_bound[i] : t.link_bound[i];
+    const std::vector<double>& values = pair ? t.distance : t.clearance;
+    const std::vector<double>& rates = pair ? t.pair_rate : t.link_rate;
+    const double growth = arm_count == 0 ? 0.0
+                          : pair         ? t.terms.pair_growth[i]
+                                         : t.terms.link_growth[i];
+    const std::size_t width = pair ? pairs : stride;
+    auto posedBound = [&](double s, double rate) {
+      return std::min(whole * s, rate * s + 0.5 * growth * s * s);
+    };
+    if (!in) return arm_count == 0 ? whole : posedBound(1.0, rates[slot * width + i]);
+    if (k < 64 && ((pair ? in->pairs_done : in->links_done) >> k & 1)) return 0.0;
+    const double h = 0.5 * (in->b - in->a);
+    const double mid = arm_count == 0 ? kNoRate : rates[slot * width + i];
+    double need = 0.0, most = 0.0;
+    for (const std::size_t end : {in->slot_a, in->slot_b}) {
+      const double rate = arm_count == 0 ? kNoRate : std::min(mid, rates[end * width + i]);
+      const double half = posedBound(h, rate);
+      need = std::max(need, half - values[end * width + i]);
+      most = std::max(most, half);
+    }
+    return need + most / 512;
+  };
   t.clearance.clear();
   t.distance.clear();
 
@@ -331,6 +308,10 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
     slot = t.clearance.size() / stride;
     t.clearance.resize(t.clearance.size() + stride, 0.0);
     t.distance.resize(t.distance.size() + pairs, 0.0);
+    if (arm_count > 0) {
+      t.link_rate.resize(t.link_rate.size() + stride, kNoRate);
+      t.pair_rate.resize(t.pair_rate.size() + pairs, kNoRate);
+    }
     if (!place(t_edge)) return false;
     BackendScratch& scratch = *t.backend;
     // Exact answers: a positive clearance (distance) is the link's (pair's) exact verdict, so
@@ -343,26 +324,33 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
     } else if (proofCollides(environment, self)) {
       return false;
     }
+    const RobotData* posed = nullptr;
+    auto pose = [&] {
+      if (posed) return;
+      posed = backend.posedRobot(scratch);
+      if (posed) return;
+      robot.forwardKinematics(t.q.data(), n, t.data,
+                              robot.isFreeFlying() ? t.X_WB : Eigen::Isometry3d::Identity());
+      posed = &t.data;
+    };
+    if (arm_count > 0) {
+      pose();
+      t.setRates(*bound_, posed, slot, stride, in);
+    }
     if (environment && clearances && has_clearance) {
       for (std::size_t k = 0; k < t.active_links.size(); ++k) {
         const std::size_t l = t.active_links[k];
-        t.caps[l] = capOf(in, k, l, t.link_bound[l], t.clearance, stride, in ? in->links_done : 0);
+        t.caps[l] = capOf(in, slot, k, l, false);
       }
       backend.motionClearances(scratch, t.caps.data(), t.clearance.data() + slot * stride);
       ++tally.clearance_states;
     }
     if (self && distances && !t.active_pairs.empty()) {
-      const RobotData* posed = backend.posedRobot(scratch);
-      if (!posed) {
-        robot.forwardKinematics(t.q.data(), n, t.data,
-                                robot.isFreeFlying() ? t.X_WB : Eigen::Isometry3d::Identity());
-        posed = &t.data;
-      }
+      pose();
       double* d = t.distance.data() + slot * pairs;
       for (std::size_t k = 0; k < t.active_pairs.size(); ++k) {
         const std::size_t p = t.active_pairs[k];
-        const double cap =
-            capOf(in, k, p, t.pair_bound[p], t.distance, pairs, in ? in->pairs_done : 0);
+        const double cap = capOf(in, slot, k, p, true);
         if (cap <= 0) continue;
         // The table's bound at this state, when it covers the pair, else the spheres'.
         const double looked_up = table ? table->at(p, t.q.data()) : 0.0;
@@ -409,15 +397,27 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
   };
   // The largest bound over [a, b] (of length s) of the active links or pairs not yet proven
   // free there, 0 when all are: one is proven when its bound is below the sum of its values
-  // (clearances, distances) at the ends, or, for voxel answers, decided by its ends. The bit of
-  // each one proven is set in `done` (the first 64; the others are tested again).
-  auto unproven = [&](const std::vector<std::size_t>& active, const double* bound, const double* va,
-                      const double* vb, double s, std::uint64_t& done) {
+  // (clearances, distances) at the ends, or, for voxel answers, decided by its ends. The bound
+  // is the edge's times s, or when that proves nothing (fixed-base robots) the posed bound from
+  // the end with the smaller rate. The bit of each one proven is set in `done` (the first 64;
+  // the others are tested again).
+  auto unproven = [&](bool pair, const Interval& in, const double* va, const double* vb,
+                      std::uint64_t& done) {
+    const std::vector<std::size_t>& active = pair ? t.active_pairs : t.active_links;
+    const double* bound = pair ? t.pair_bound.data() : t.link_bound.data();
+    const double s = in.b - in.a;
     double open = 0.0;
     for (std::size_t k = 0; k < active.size(); ++k) {
       if (k < 64 && (done >> k & 1)) continue;
       const std::size_t i = active[k];
-      const double b = bound[i] * s;
+      double b = bound[i] * s;
+      if (arm_count > 0 && b > decided_by_ends && b >= va[i] + vb[i]) {
+        const std::vector<double>& rates = pair ? t.pair_rate : t.link_rate;
+        const std::size_t width = pair ? pairs : stride;
+        const double rate = std::min(rates[in.slot_a * width + i], rates[in.slot_b * width + i]);
+        const double growth = pair ? t.terms.pair_growth[i] : t.terms.link_growth[i];
+        b = std::min(b, rate * s + 0.5 * growth * s * s);
+      }
       if (b <= decided_by_ends || b < va[i] + vb[i]) {
         if (k < 64) done |= std::uint64_t{1} << k;
       } else {
@@ -427,14 +427,13 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
     return open;
   };
   auto unprovenLinks = [&](Scratch::Interval& in) {
-    return unproven(t.active_links, t.link_bound.data(), t.clearance.data() + in.slot_a * stride,
-                    t.clearance.data() + in.slot_b * stride, in.b - in.a, in.links_done);
+    return unproven(false, in, t.clearance.data() + in.slot_a * stride,
+                    t.clearance.data() + in.slot_b * stride, in.links_done);
   };
   auto unprovenPairs = [&](Scratch::Interval& in) {
     const double* da = t.distance.data() + in.slot_a * pairs;
     const double* db = t.distance.data() + in.slot_b * pairs;
-    const double open =
-        unproven(t.active_pairs, t.pair_bound.data(), da, db, in.b - in.a, in.pairs_done);
+    const double open = unproven(true, in, da, db, in.pairs_done);
     // A part of the edge: the table may prove a pair along it (not along the whole edge, which
     // it did not).
     if (open == 0.0 || !table || (in.a == 0.0 && in.b == 1.0)) return open;
@@ -447,8 +446,7 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
         more = true;
       }
     }
-    return more ? unproven(t.active_pairs, t.pair_bound.data(), da, db, in.b - in.a, in.pairs_done)
-                : open;
+    return more ? unproven(true, in, da, db, in.pairs_done) : open;
   };
 
   // Exact answers: the last valid state reported is a proven interval's end at least the minimum
@@ -499,6 +497,12 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
           slot = t.clearance.size() / stride;
           t.clearance.resize(t.clearance.size() + stride, 0.0);
           t.distance.resize(t.distance.size() + pairs, 0.0);
+          if (arm_count > 0) {
+            t.link_rate.resize(t.link_rate.size() + stride, kNoRate);
+            t.pair_rate.resize(t.pair_rate.size() + pairs, kNoRate);
+            t.arms = r.arms;
+            t.setRates(*bound_, nullptr, slot, stride, nullptr);
+          }
           for (std::size_t l : t.active_links) t.clearance[slot * stride + l] = r.clearance[l];
           for (std::size_t p : t.active_pairs) t.distance[slot * pairs + p] = r.distance[p];
           return true;
@@ -511,6 +515,7 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
       r.key = t.key;
       r.clearance.assign(stride, kUnknown);
       r.distance.assign(pairs, kUnknown);
+      r.arms = t.arms;  // every link's at an end
       if (has_clearance) {
         for (std::size_t l : t.active_links) r.clearance[l] = t.clearance[slot * stride + l];
       } else {

@@ -191,9 +191,11 @@ LinkMotionBound::LinkMotionBound(const RobotModel& robot, bool keep_mesh_root_tr
   struct JointLever {
     int joint, variable;
     double lever;
+    std::size_t arm;  // its index in path_joints_
   };
   std::vector<std::vector<JointLever>> joint_levers(static_cast<std::size_t>(link_count_));
   for (int l = 0; l < link_count_; ++l) {
+    path_begin_.push_back(path_joints_.size());
     Points points = linkPoints(robot.link(l), meshes);
     for (const CarriedPoints& c : carried) {
       if (c.link == l) points.insert(points.end(), c.points.begin(), c.points.end());
@@ -232,15 +234,20 @@ LinkMotionBound::LinkMotionBound(const RobotModel& robot, bool keep_mesh_root_tr
       }
       const double multiplier = joint.isMimic() ? std::abs(joint.mimic_multiplier) : 1.0;
       levers_[static_cast<std::size_t>(l * variable_count_ + variable)] += multiplier * arm;
-      joint_levers[static_cast<std::size_t>(l)].push_back({path[i], variable, multiplier * arm});
+      joint_levers[static_cast<std::size_t>(l)].push_back(
+          {path[i], variable, multiplier * arm, path_joints_.size()});
+      path_joints_.push_back({path[i], variable, joint.child_link, multiplier, arm,
+                              joint.type != JointType::kPrismatic, joint.axis.normalized()});
     }
   }
+  path_begin_.push_back(path_joints_.size());
   // A pair's relative motion: the joints on one link's path and not on the other's (the common
   // ones, above the two links' common ancestor, move both rigidly). By joint, not by variable:
   // a mimic joint moves one finger while its master moves the other.
   pairs_ = robot.checkedPairs();
   pair_levers_.assign(pairs_.size() * static_cast<std::size_t>(variable_count_), 0.0);
   for (std::size_t p = 0; p < pairs_.size(); ++p) {
+    pair_begin_.push_back(pair_arms_.size());
     const auto& a = joint_levers[static_cast<std::size_t>(pairs_[p].first)];
     const auto& b = joint_levers[static_cast<std::size_t>(pairs_[p].second)];
     double* lever = pair_levers_.data() + p * static_cast<std::size_t>(variable_count_);
@@ -249,12 +256,87 @@ LinkMotionBound::LinkMotionBound(const RobotModel& robot, bool keep_mesh_root_tr
                          [joint](const JointLever& j) { return j.joint == joint; });
     };
     for (const JointLever& j : a) {
-      if (!onPath(b, j.joint)) lever[j.variable] += j.lever;
+      if (!onPath(b, j.joint)) {
+        lever[j.variable] += j.lever;
+        pair_arms_.push_back(j.arm);
+      }
     }
     for (const JointLever& j : b) {
-      if (!onPath(a, j.joint)) lever[j.variable] += j.lever;
+      if (!onPath(a, j.joint)) {
+        lever[j.variable] += j.lever;
+        pair_arms_.push_back(j.arm);
+      }
     }
   }
+  pair_begin_.push_back(pair_arms_.size());
+}
+
+void LinkMotionBound::posedArms(const RobotData& data, int link, double* arms) const {
+  const std::size_t begin = path_begin_[static_cast<std::size_t>(link)];
+  const std::size_t end = path_begin_[static_cast<std::size_t>(link) + 1];
+  if (begin == end) return;
+  const Spheres& sphere = spheres_[static_cast<std::size_t>(link)];
+  const Eigen::Vector3d centre_W = data.linkPose(link) * sphere.center;
+  for (std::size_t k = begin; k < end; ++k) {
+    const PathJoint& j = path_joints_[k];
+    if (!j.revolute) {
+      arms[k] = 1.0;
+      continue;
+    }
+    // The axis passes through the joint's child frame's origin, along its axis there.
+    const Eigen::Isometry3d& X_WC = data.linkPose(j.axis_link);
+    const Eigen::Vector3d u_W = X_WC.linear() * j.axis;
+    const double from_axis = u_W.cross(centre_W - X_WC.translation()).norm();
+    // A micrometre covers rounding in the poses.
+    arms[k] = std::min(j.lever, from_axis + sphere.radius + 1e-6);
+  }
+}
+
+void LinkMotionBound::edgeTerms(const double* dq, EdgeTerms& terms) const {
+  terms.weight.resize(path_joints_.size());
+  terms.link_growth.assign(static_cast<std::size_t>(link_count_), 0.0);
+  terms.pair_growth.assign(pairs_.size(), 0.0);
+  // Per arm, its weight times S_j (the levers below j on the link's path times their weights).
+  std::vector<double>& below = terms.arm_growth;
+  below.assign(path_joints_.size(), 0.0);
+  for (int l : geometry_links_) {
+    const std::size_t begin = path_begin_[static_cast<std::size_t>(l)];
+    const std::size_t end = path_begin_[static_cast<std::size_t>(l) + 1];
+    double speed_below = 0.0;  // of the link's points relative to the current joint's child
+    double growth = 0.0;
+    for (std::size_t k = end; k-- > begin;) {
+      const PathJoint& j = path_joints_[k];
+      const double w = std::abs(dq[j.variable]) * j.multiplier;
+      terms.weight[k] = w;
+      below[k] = j.revolute ? w * speed_below : 0.0;
+      growth += below[k];
+      speed_below += w * j.lever;
+    }
+    terms.link_growth[static_cast<std::size_t>(l)] = growth;
+  }
+  for (std::size_t p = 0; p < pairs_.size(); ++p) {
+    double growth = 0.0;
+    for (std::size_t i = pair_begin_[p]; i < pair_begin_[p + 1]; ++i)
+      growth += below[pair_arms_[i]];
+    terms.pair_growth[p] = growth;
+  }
+}
+
+double LinkMotionBound::linkRate(int link, const EdgeTerms& terms, const double* arms) const {
+  double rate = 0.0;
+  const std::size_t end = path_begin_[static_cast<std::size_t>(link) + 1];
+  for (std::size_t k = path_begin_[static_cast<std::size_t>(link)]; k < end; ++k) {
+    rate += terms.weight[k] * arms[k];
+  }
+  return rate;
+}
+
+double LinkMotionBound::pairRate(std::size_t p, const EdgeTerms& terms, const double* arms) const {
+  double rate = 0.0;
+  for (std::size_t i = pair_begin_[p]; i < pair_begin_[p + 1]; ++i) {
+    rate += terms.weight[pair_arms_[i]] * arms[pair_arms_[i]];
+  }
+  return rate;
 }
 
 // Spheres that hold the hull of a link's points (its geometry): one about their box's centre

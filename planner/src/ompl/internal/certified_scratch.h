@@ -2,6 +2,7 @@
 #pragma once
 
 #include <array>
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -13,6 +14,16 @@
 #include "octomotion/planner/ompl/certified_motion_validator.h"
 
 namespace octomotion {
+
+// The validator's counts, shared by the threads that check edges.
+struct CertifiedMotionValidator::AtomicCounts {
+  struct Edges {
+    std::atomic<std::size_t> edges{0}, screen_checks{0}, proof_checks{0}, clearance_states{0},
+        pair_distances{0}, table_pairs{0}, depth{0}, nanoseconds{0}, micrometres{0};
+  };
+  Edges accepted, rejected;
+  std::atomic<std::size_t> rejected_by_screen{0}, remembered_ends{0};
+};
 
 // One thread's working memory, rebuilt when the thread turns to another backend; kept between
 // edges so that checking one allocates nothing once the vectors have grown.
@@ -37,12 +48,23 @@ struct CertifiedMotionValidator::Scratch {
   std::vector<std::size_t> active_links;
   std::vector<std::size_t> active_pairs;
   std::vector<double> clearance, distance;  // per evaluated state: per link, per pair
+  // Fixed-base robots, the posed bounds (LinkMotionBound): the edge's terms; per evaluated state,
+  // the rates of the links and pairs it was evaluated for (+inf for the others); the arms of the
+  // state at hand and, per link, whether they are computed.
+  LinkMotionBound::EdgeTerms terms;
+  std::vector<double> link_rate, pair_rate, arms;
+  std::vector<char> armed;
+  // Sets a slot's rates at the pose `posed`: of every active link and pair at an end (`in`
+  // null; every link's arms computed, or already in `arms` when `posed` is null), else of those
+  // not proven over the interval `in` it halves (all that its halves' descendants test).
+  void setRates(const LinkMotionBound& bound, const RobotData* posed, std::size_t slot,
+                std::size_t stride, const Interval* in);
   std::vector<Interval> todo;
   // Valid ends checked before (direct-mapped by a hash of the configuration): the values of the
   // links and pairs active then, NaN for the others.
   struct Remembered {
     std::uint64_t validator = 0;
-    std::vector<double> key, clearance, distance;
+    std::vector<double> key, clearance, distance, arms;
   };
   static constexpr std::size_t kRemembered = 64;
   std::array<Remembered, kRemembered> remembered;

@@ -3,8 +3,9 @@
 // multiple articulated robots", IEEE T-RO 2005): docs/validation.md §4.
 //
 // Link by link, an interval [a, b] of the edge, both ends valid, is free of the environment for
-// link l when l's path-length bound over it (LinkMotionBound, robot/motion_bound.h) is less
-// than the sum of l's clearances at its ends (a lower bound on its distance,
+// link l when l's path-length bound over it (LinkMotionBound, robot/motion_bound.h; for a
+// fixed-base robot the smaller of the levers' bound and the posed bounds from the interval's
+// ends) is less than the sum of l's clearances at its ends (a lower bound on its distance,
 // CollisionBackend::motionClearances). Pair by pair, it is free of self-collision when the
 // bound on the change of the pair's distance (LinkMotionBound::pairBound: only the joints that
 // move one link and not the other) is less than the sum of the pair's distance bounds at its

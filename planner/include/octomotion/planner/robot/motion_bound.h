@@ -106,7 +106,45 @@ class LinkMotionBound {
   double pairDistance(std::size_t p, const RobotData& data, double cap) const;
   static constexpr int kPairSlabs = 4;
 
+  // Posed bounds (fixed-base robots). The levers above hold over every configuration (the arm
+  // stretched); at a given pose the joints' axes are mostly nearer. Along a straight-line
+  // motion q(t) = q0 + t dq, a point x of link l moves at a speed of at most
+  // sum_j |dq_v(j)| m_j d_j(t), d_j(t) its distance from joint j's axis (m_j the mimic
+  // multiplier; a prismatic joint's d_j is 1). d_j changes only through the joints below j
+  // (turning about j's own axis keeps it), so d_j(t) <= d_j(0) + |t| S_j with S_j the levers
+  // below j times their |dq|; over a part of length s from a posed end the path is at most
+  // rate * s + growth * s^2 / 2, rate = sum_j |dq_v(j)| m_j d_j(0) (linkRate, pairRate) and
+  // growth = sum_j |dq_v(j)| m_j S_j (EdgeTerms). d_j(0) is bounded by the distance from the
+  // axis to the link's sphere (its centre's plus its radius) and by j's lever (posedArms).
+  //
+  // Per link and each movable joint on its path ("arms"): armCount() values, posedArms writes
+  // those of one link (or of every link).
+  std::size_t armCount() const { return path_joints_.size(); }
+  void posedArms(const RobotData& data, int link, double* arms) const;
+  void posedArms(const RobotData& data, double* arms) const {
+    for (int l : geometry_links_) posedArms(data, l, arms);
+  }
+  // A straight-line motion's weights (|dq_v(j)| m_j per arm) and growth per link and per pair.
+  struct EdgeTerms {
+    std::vector<double> weight, link_growth, pair_growth;
+    std::vector<double> arm_growth;  // per arm, its part of the growth
+  };
+  void edgeTerms(const double* dq, EdgeTerms& terms) const;
+  // The rate of link l (pair p) at a pose whose arms are given, for the motion of `terms`.
+  double linkRate(int link, const EdgeTerms& terms, const double* arms) const;
+  double pairRate(std::size_t p, const EdgeTerms& terms, const double* arms) const;
+
  private:
+  // A movable joint on a link's path from the root (root first), with its fixed lever.
+  struct PathJoint {
+    int joint, variable, axis_link;  // axis_link: the joint's child, whose frame holds the axis
+    double multiplier, lever;
+    bool revolute;
+    Eigen::Vector3d axis;  // unit, in axis_link's frame
+  };
+  std::vector<PathJoint> path_joints_;               // per link, in order (path_begin_ per link)
+  std::vector<std::size_t> path_begin_;              // linkCount() + 1 offsets
+  std::vector<std::size_t> pair_arms_, pair_begin_;  // per pair: its arms (pairBound's joints)
   struct Spheres {
     Eigen::Vector3d center = Eigen::Vector3d::Zero();  // in the link frame
     double radius = 0;
