@@ -3,7 +3,7 @@
 // straight from its MoveIt scene and request with the Panda of ../shared/data/panda) planned
 // once each by the scene's defaults (RRTConnect, 1 s, seed 1), with the octree (fused) checker
 // at the defaults (exact refine) and with exact FCL, with the certified validator's collision
-// screen (CertifiedMotionValidator::kScreenLevels), without it (`noscreen`) and with 2 and 6
+// screen (CertifiedMotionValidator::kScreenLevels), without it (`noscreen`) and with 2 and 4
 // levels. The counters,
 // per plan, split the motion checks into accepted and rejected edges
 // (CertifiedMotionValidator::Counts): how many, milliseconds per edge, screen and proof state
@@ -150,7 +150,7 @@ BENCHMARK_CAPTURE(run, octree_noscreen, CheckerKind::kOctreeFused, 0)
 BENCHMARK_CAPTURE(run, octree_screen2, CheckerKind::kOctreeFused, 2)
     ->Unit(benchmark::kMillisecond)
     ->Iterations(1);
-BENCHMARK_CAPTURE(run, octree_screen6, CheckerKind::kOctreeFused, 6)
+BENCHMARK_CAPTURE(run, octree_screen4, CheckerKind::kOctreeFused, 4)
     ->Unit(benchmark::kMillisecond)
     ->Iterations(1);
 BENCHMARK_CAPTURE(run, fcl, CheckerKind::kFcl, kDefault)

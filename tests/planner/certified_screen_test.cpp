@@ -2,7 +2,7 @@
 // on the real Panda in a MotionBenchMaker scene, with the octree at its defaults (exact refine)
 // and with the FCL checker, random edges of the planner's default range from valid states are
 // checked; every edge the screen rejects has a state the scene's state checker finds colliding
-// among the ones the screen may visit (the end and the midpoints of 4 levels), and the proof
+// among the ones the screen may visit (the end and the midpoints of its levels), and the proof
 // alone (no screen) rejects it too; every accepted edge is free for exact FCL at 400 states and
 // accepted by the proof alone. Skips without ../shared/data.
 #include <gtest/gtest.h>

@@ -88,7 +88,7 @@ class CertifiedMotionValidator : public ompl::base::MotionValidator {
   // down to the level where the edge's bound between them is at most kScreenTravel resolutions
   // and at most kScreenLevels levels (2^kScreenLevels - 1 midpoints): a colliding edge is
   // rejected there, cheaply; the proof is spent only on edges that pass it.
-  static constexpr int kScreenLevels = 4;
+  static constexpr int kScreenLevels = 3;
   static constexpr double kScreenTravel = 4.0;
 
   // Counters since construction (or resetCounts): state checks that test the environment (with
@@ -142,9 +142,8 @@ class CertifiedMotionValidator : public ompl::base::MotionValidator {
   double resolution_;
   std::shared_ptr<const PairDistanceTable> pair_table_;
   std::uint64_t pair_table_owner_ = 0;  // the backend's id when the table was built
-  std::uint64_t serial_;
-  int screen_levels_ =
-      kScreenLevels;  // process-unique: a thread's remembered states belong to one validator
+  std::uint64_t serial_;  // process-unique: a thread's remembered states belong to one validator
+  int screen_levels_ = kScreenLevels;
   mutable std::atomic<std::size_t> state_checks_{0};
   mutable std::atomic<std::size_t> self_checks_{0};
   struct AtomicCounts;
