@@ -416,8 +416,8 @@ class OctreeCollisionModel {
   // geometry to the environment's objects, or caps[l] when that is at least caps[l]: per object,
   // the distance between convex hulls holding both (boxes, balls, cylinders; docs/validation.md
   // §7), or FCL's exact distance where that hull bound is within an eighth of a voxel of contact
-  // or the object is not a primitive. And the same between two links' geometry, or `cap` when at
-  // least `cap`. Without kExact: per_link unchanged, and 0.
+  // (a 64th against a primitive) or the object is not a primitive. And the same between two links'
+  // geometry, or `cap` when at least `cap`. Without kExact: per_link unchanged, and 0.
   void refineClearancesPerLink(const CheckScratch& scratch, const double* caps,
                                double* per_link) const;
   double refinedPairDistance(const CheckScratch& scratch, int link_a, int link_b, double cap) const;
