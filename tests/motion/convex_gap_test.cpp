@@ -306,8 +306,8 @@ TEST(ConvexDistance, EveryBoundHasItsSlabAndStaysBelowEveryPointPair) {
 }
 
 // Convex sets at a known distance s (two sides of a slab, one point of each on its faces):
-// without a cap the bound is s up to GJK's tolerance; with one, it reaches a cap below s and
-// stays below a cap above it; sets sharing a point get 0.
+// without a cap the bound is s up to GJK's tolerance (the default's, and a looser one); with one,
+// it reaches a cap below s and stays below a cap above it; sets sharing a point get 0.
 TEST(ConvexDistance, FindsTheDistanceOfSetsAcrossASlab) {
   std::mt19937_64 rng(0xd51a);
   for (int trial = 0; trial < 2000; ++trial) {
@@ -321,6 +321,12 @@ TEST(ConvexDistance, FindsTheDistanceOfSetsAcrossASlab) {
     EXPECT_GE(bound, s - 1e-8 - 1e-6 * s) << "trial " << trial;
     EXPECT_GE(convexDistanceBelow(ca, cb, X_AB, 0.99 * s), 0.99 * s) << "trial " << trial;
     EXPECT_LT(convexDistanceBelow(ca, cb, X_AB, 1.01 * s), 1.01 * s) << "trial " << trial;
+    // A looser tolerance: v . w >= (1 - tolerance) |v|^2 at the stop, so the bound along v is at
+    // least (1 - tolerance) |v| >= (1 - tolerance) s, and never above s.
+    constexpr double kLoose = 1e-2;
+    const double loose = convexDistanceBelow(ca, cb, X_AB, inf, nullptr, kLoose);
+    EXPECT_LE(loose, s) << "trial " << trial;
+    EXPECT_GE(loose, (1 - kLoose) * s - 1e-8) << "trial " << trial;
     // Shift b by s along the slab's normal (x in W): the sets now share a point.
     Eigen::Isometry3d X_WB_touching = X_WB;
     X_WB_touching.translation() -= Eigen::Vector3d(s, 0, 0);

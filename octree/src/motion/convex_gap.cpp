@@ -340,8 +340,8 @@ constexpr double kRounding = 1e-9;
 }  // namespace
 
 double convexDistanceBelow(const ConvexPoints& a, const ConvexPoints& b,
-                           const Eigen::Isometry3d& X_AB, double cap,
-                           Eigen::Vector3d* direction_A) {
+                           const Eigen::Isometry3d& X_AB, double cap, Eigen::Vector3d* direction_A,
+                           double tolerance) {
   if (a.empty() || b.empty()) return 0.0;
   const Eigen::Matrix3d R_AB = X_AB.linear();
   const Eigen::Matrix3d R_BA = R_AB.transpose();
@@ -379,7 +379,7 @@ double convexDistanceBelow(const ConvexPoints& a, const ConvexPoints& b,
     }
     if (bound >= cap) break;
     // No progress left (the distance found) or a full simplex: stop.
-    if (len * len - vw <= 1e-9 * len * len || s.n == 4) break;
+    if (len * len - vw <= tolerance * len * len || s.n == 4) break;
     s.p[static_cast<std::size_t>(s.n++)] = w;
     // The origin inside the simplex (the hulls overlap) or a degenerate simplex: stop.
     if (!reduce(s, v) || !(v.squaredNorm() > 0)) break;

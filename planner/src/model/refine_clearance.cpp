@@ -39,6 +39,11 @@ double hullTrusted(const WorldGrid& grid, const RefineObject& object) {
   return object.primitive ? grid.voxelSize() / 64 : hullTrusted(grid);
 }
 
+// GJK's stopping tolerance for the validator's hull distances (convexDistanceBelow): a bound
+// within 1 % of the hulls' distance costs a little bisection, and GJK's last iterations
+// (rounded shapes converge slowly) cost more.
+constexpr double kHullTolerance = 1e-2;
+
 double distanceToBox(const fcl::AABBd& box, const Eigen::Vector3d& p) {
   return (box.min_ - p).cwiseMax(p - box.max_).cwiseMax(0.0).norm();
 }
@@ -60,7 +65,8 @@ double refineLinkDistance(const RefineData& data, RefineScratch& r, const RobotD
     if (!hull_L.empty()) {
       if (distanceToBox(object.box_W, centre_W) - reach >= best) continue;
       if (!object.hull_O.empty()) {
-        const double h = convexDistanceBelow(object.hull_O, hull_L, object.X_OW * X_WL, best);
+        const double h = convexDistanceBelow(object.hull_O, hull_L, object.X_OW * X_WL, best,
+                                             nullptr, kHullTolerance);
         if (h >= best || h > hullTrusted(grid, object)) {
           ++r.hull_distances;
           best = std::min(best, h);
@@ -115,7 +121,8 @@ double OctreeCollisionModel::refinedPairDistance(const CheckScratch& scratch, in
   if (!hull_a.empty() && !hull_b.empty()) {
     const Eigen::Isometry3d X_AB =
         scratch.robot.linkPose(link_a).inverse() * scratch.robot.linkPose(link_b);
-    const double h = convexDistanceBelow(hull_a, hull_b, X_AB, cap);
+    const double h =
+        convexDistanceBelow(hull_a, hull_b, X_AB, cap, nullptr, detail::kHullTolerance);
     if (h >= cap || h > detail::hullTrusted(grid())) {
       ++r.hull_distances;
       return std::min(h, cap);

@@ -83,11 +83,12 @@ bool convexApart(const ConvexPoints& a, const ConvexPoints& b, const Eigen::Isom
 // every point of both sets, less their radii and a nanometre for rounding. GJK only proposes the
 // direction, so a wrong or unfinished run makes the bound smaller, never too large. 0 when they
 // overlap. GJK stops early once the bound reaches `cap`; otherwise it runs until the distance is
-// found to about 1e-9 relative, so for convex sets the bound is their distance up to that.
-// `direction_A` as in convexApart: it starts the search and receives the bound's direction.
+// found to about `tolerance` relative (GJK's upper bound on the distance within that fraction of
+// its lower one), so for convex sets the bound is their distance up to that. `direction_A` as in
+// convexApart: it starts the search and receives the bound's direction.
 double convexDistanceBelow(const ConvexPoints& a, const ConvexPoints& b,
                            const Eigen::Isometry3d& X_AB, double cap,
-                           Eigen::Vector3d* direction_A = nullptr);
+                           Eigen::Vector3d* direction_A = nullptr, double tolerance = 1e-9);
 
 // The points of exact or outer hulls of primitive solids, in the solid's frame (centred, a
 // cylinder along z), for convexDistanceBelow: a distance to them never exceeds the distance to
