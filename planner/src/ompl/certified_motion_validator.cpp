@@ -232,7 +232,7 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
   const std::size_t stride = std::max<std::size_t>(links, 1);
   // What an evaluated state's (in `slot`) clearance (distance) of the k-th active link (pair) i
   // must reach, above which it decides nothing more: capped there, so the grid, the hulls and FCL
-  // stop early. At an end (no interval), the whole edge's bound. At the midpoint of [a, b],
+  // stop early. At an end (no interval), the edge's bound from it. At the midpoint of [a, b],
   // enough to prove both halves at once, each half's bound less the value at its outer end, plus
   // a 512th of the half's bound; 0 (not computed) for one already proven over [a, b]. A half's
   // bound is the edge's, or the posed bound from the end of it with the smaller rate.
