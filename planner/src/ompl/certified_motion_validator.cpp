@@ -236,26 +236,30 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
   // enough to prove both halves at once, each half's bound less the value at its outer end, plus
   // a 512th of the half's bound; 0 (not computed) for one already proven over [a, b]. A half's
   // bound is the edge's, or the posed bound from the end of it with the smaller rate.
+  // Link (pair) i's rate at an evaluated state (+inf when not computed there, or none).
+  auto rateAt = [&](bool pair, std::size_t slot, std::size_t i) {
+    if (arm_count == 0) return kNoRate;
+    return pair ? t.pair_rate[slot * pairs + i] : t.link_rate[slot * stride + i];
+  };
+  // Link (pair) i's bound over a part of length s of the edge: the edge's times s, or less,
+  // the posed bound from an end of the part with the given rate.
+  auto boundOver = [&](bool pair, std::size_t i, double s, double rate) {
+    const double whole = (pair ? t.pair_bound[i] : t.link_bound[i]) * s;
+    if (arm_count == 0) return whole;
+    const double growth = pair ? t.terms.pair_growth[i] : t.terms.link_growth[i];
+    return std::min(whole, rate * s + 0.5 * growth * s * s);
+  };
   auto capOf = [&](const Scratch::Interval* in, std::size_t slot, std::size_t k, std::size_t i,
                    bool pair) {
-    const double whole = pair ? t.pair_bound[i] : t.link_bound[i];
-    const std::vector<double>& values = pair ? t.distance : t.clearance;
-    const std::vector<double>& rates = pair ? t.pair_rate : t.link_rate;
-    const double growth = arm_count == 0 ? 0.0
-                          : pair         ? t.terms.pair_growth[i]
-                                         : t.terms.link_growth[i];
-    const std::size_t width = pair ? pairs : stride;
-    auto posedBound = [&](double s, double rate) {
-      return std::min(whole * s, rate * s + 0.5 * growth * s * s);
-    };
-    if (!in) return arm_count == 0 ? whole : posedBound(1.0, rates[slot * width + i]);
+    if (!in) return boundOver(pair, i, 1.0, rateAt(pair, slot, i));
     if (k < 64 && ((pair ? in->pairs_done : in->links_done) >> k & 1)) return 0.0;
+    const std::vector<double>& values = pair ? t.distance : t.clearance;
+    const std::size_t width = pair ? pairs : stride;
     const double h = 0.5 * (in->b - in->a);
-    const double mid = arm_count == 0 ? kNoRate : rates[slot * width + i];
     double need = 0.0, most = 0.0;
     for (const std::size_t end : {in->slot_a, in->slot_b}) {
-      const double rate = arm_count == 0 ? kNoRate : std::min(mid, rates[end * width + i]);
-      const double half = posedBound(h, rate);
+      const double half =
+          boundOver(pair, i, h, std::min(rateAt(pair, slot, i), rateAt(pair, end, i)));
       need = std::max(need, half - values[end * width + i]);
       most = std::max(most, half);
     }
@@ -291,6 +295,17 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
     }
     return true;
   };
+  // A new evaluated state's slot: its values 0 (an invalid state's stay so), no rates yet.
+  auto newSlot = [&] {
+    const std::size_t slot = t.clearance.size() / stride;
+    t.clearance.resize(t.clearance.size() + stride, 0.0);
+    t.distance.resize(t.distance.size() + pairs, 0.0);
+    if (arm_count > 0) {
+      t.link_rate.resize(t.link_rate.size() + stride, kNoRate);
+      t.pair_rate.resize(t.pair_rate.size() + pairs, kNoRate);
+    }
+    return slot;
+  };
   // A proof's collision check of the state in t.q, of the halves asked (one at least).
   auto proofCollides = [&](bool environment, bool self) {
     (environment ? state_checks_ : self_checks_).fetch_add(1, std::memory_order_relaxed);
@@ -305,13 +320,7 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
   // A slot's values stay 0 when its state is invalid.
   auto evaluate = [&](double t_edge, const Scratch::Interval* in, bool environment, bool self,
                       bool clearances, bool distances, std::size_t& slot) {
-    slot = t.clearance.size() / stride;
-    t.clearance.resize(t.clearance.size() + stride, 0.0);
-    t.distance.resize(t.distance.size() + pairs, 0.0);
-    if (arm_count > 0) {
-      t.link_rate.resize(t.link_rate.size() + stride, kNoRate);
-      t.pair_rate.resize(t.pair_rate.size() + pairs, kNoRate);
-    }
+    slot = newSlot();
     if (!place(t_edge)) return false;
     BackendScratch& scratch = *t.backend;
     // Exact answers: a positive clearance (distance) is the link's (pair's) exact verdict, so
@@ -412,11 +421,7 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
       const std::size_t i = active[k];
       double b = bound[i] * s;
       if (arm_count > 0 && b > decided_by_ends && b >= va[i] + vb[i]) {
-        const std::vector<double>& rates = pair ? t.pair_rate : t.link_rate;
-        const std::size_t width = pair ? pairs : stride;
-        const double rate = std::min(rates[in.slot_a * width + i], rates[in.slot_b * width + i]);
-        const double growth = pair ? t.terms.pair_growth[i] : t.terms.link_growth[i];
-        b = std::min(b, rate * s + 0.5 * growth * s * s);
+        b = boundOver(pair, i, s, std::min(rateAt(pair, in.slot_a, i), rateAt(pair, in.slot_b, i)));
       }
       if (b <= decided_by_ends || b < va[i] + vb[i]) {
         if (k < 64) done |= std::uint64_t{1} << k;
@@ -494,12 +499,8 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
         for (std::size_t p : t.active_pairs) known = known && !std::isnan(r.distance[p]);
         if (known) {
           ++tally.remembered_ends;
-          slot = t.clearance.size() / stride;
-          t.clearance.resize(t.clearance.size() + stride, 0.0);
-          t.distance.resize(t.distance.size() + pairs, 0.0);
+          slot = newSlot();
           if (arm_count > 0) {
-            t.link_rate.resize(t.link_rate.size() + stride, kNoRate);
-            t.pair_rate.resize(t.pair_rate.size() + pairs, kNoRate);
             t.arms = r.arms;
             t.setRates(*bound_, nullptr, slot, stride, nullptr);
           }

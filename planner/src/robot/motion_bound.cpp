@@ -186,14 +186,6 @@ LinkMotionBound::LinkMotionBound(const RobotModel& robot, bool keep_mesh_root_tr
   CollisionMeshes meshes(keep_mesh_root_transform, center_mesh_vertices);
   spheres_.resize(static_cast<std::size_t>(link_count_));
   axis_radius_.resize(static_cast<std::size_t>(link_count_));
-  // Per link, each movable joint on its path from the root with its lever (times the mimic
-  // multiplier) and variable: the self pairs' levers are sums of these.
-  struct JointLever {
-    int joint, variable;
-    double lever;
-    std::size_t arm;  // its index in path_joints_
-  };
-  std::vector<std::vector<JointLever>> joint_levers(static_cast<std::size_t>(link_count_));
   for (int l = 0; l < link_count_; ++l) {
     path_begin_.push_back(path_joints_.size());
     Points points = linkPoints(robot.link(l), meshes);
@@ -234,8 +226,6 @@ LinkMotionBound::LinkMotionBound(const RobotModel& robot, bool keep_mesh_root_tr
       }
       const double multiplier = joint.isMimic() ? std::abs(joint.mimic_multiplier) : 1.0;
       levers_[static_cast<std::size_t>(l * variable_count_ + variable)] += multiplier * arm;
-      joint_levers[static_cast<std::size_t>(l)].push_back(
-          {path[i], variable, multiplier * arm, path_joints_.size()});
       path_joints_.push_back({path[i], variable, joint.child_link, multiplier, arm,
                               joint.type != JointType::kPrismatic, joint.axis.normalized()});
     }
@@ -246,25 +236,22 @@ LinkMotionBound::LinkMotionBound(const RobotModel& robot, bool keep_mesh_root_tr
   // a mimic joint moves one finger while its master moves the other.
   pairs_ = robot.checkedPairs();
   pair_levers_.assign(pairs_.size() * static_cast<std::size_t>(variable_count_), 0.0);
+  auto onPath = [&](int link, int joint) {
+    const auto begin = path_joints_.begin() + static_cast<std::ptrdiff_t>(path_begin_[link]);
+    const auto end = path_joints_.begin() + static_cast<std::ptrdiff_t>(path_begin_[link + 1]);
+    return std::any_of(begin, end, [joint](const PathJoint& j) { return j.joint == joint; });
+  };
   for (std::size_t p = 0; p < pairs_.size(); ++p) {
     pair_begin_.push_back(pair_arms_.size());
-    const auto& a = joint_levers[static_cast<std::size_t>(pairs_[p].first)];
-    const auto& b = joint_levers[static_cast<std::size_t>(pairs_[p].second)];
     double* lever = pair_levers_.data() + p * static_cast<std::size_t>(variable_count_);
-    auto onPath = [](const std::vector<JointLever>& path, int joint) {
-      return std::any_of(path.begin(), path.end(),
-                         [joint](const JointLever& j) { return j.joint == joint; });
-    };
-    for (const JointLever& j : a) {
-      if (!onPath(b, j.joint)) {
-        lever[j.variable] += j.lever;
-        pair_arms_.push_back(j.arm);
-      }
-    }
-    for (const JointLever& j : b) {
-      if (!onPath(a, j.joint)) {
-        lever[j.variable] += j.lever;
-        pair_arms_.push_back(j.arm);
+    // Each movable joint on one link's path (its arms) and not on the other's.
+    for (const auto& [link, other] :
+         {pairs_[p], std::make_pair(pairs_[p].second, pairs_[p].first)}) {
+      for (std::size_t k = path_begin_[link]; k < path_begin_[link + 1]; ++k) {
+        const PathJoint& j = path_joints_[k];
+        if (onPath(other, j.joint)) continue;
+        lever[j.variable] += j.multiplier * j.lever;
+        pair_arms_.push_back(k);
       }
     }
   }
@@ -316,8 +303,9 @@ void LinkMotionBound::edgeTerms(const double* dq, EdgeTerms& terms) const {
   }
   for (std::size_t p = 0; p < pairs_.size(); ++p) {
     double growth = 0.0;
-    for (std::size_t i = pair_begin_[p]; i < pair_begin_[p + 1]; ++i)
+    for (std::size_t i = pair_begin_[p]; i < pair_begin_[p + 1]; ++i) {
       growth += below[pair_arms_[i]];
+    }
     terms.pair_growth[p] = growth;
   }
 }
