@@ -6,7 +6,8 @@
 // random value, never exceeds FCL's exact distance from that link to the environment and, where
 // the validator asks for a tight one, is within kClose of it below the cap; each checked self
 // pair's refined distance likewise; and edges the certified validator accepts are free for exact
-// FCL at 500 states each. Skipped without ../shared/data.
+// FCL at 500 states each. A pose restored from an earlier query's link poses answers as
+// setPose does. Skipped without ../shared/data.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -149,6 +150,44 @@ TEST_P(HullClearance, RefinedPairDistancesAreLowerBoundsCloseToFclsDistances) {
   }
   EXPECT_GT(below, 20);
   EXPECT_GT(above, 200);
+}
+
+// The certified validator poses a screened state from the link poses its screen query left
+// (CollisionBackend::setPosed): every clearance and pair distance must then be what setPose
+// gives, bit for bit, even with the scratch last posed elsewhere.
+TEST_P(HullClearance, PosesRestoredFromAnEarlierQueryAnswerAsSetPose) {
+  const RobotModel& robot = scene_.model->robot();
+  const auto links = static_cast<std::size_t>(robot.linkCount());
+  auto fcl_scratch = fcl_->makeBackendScratch();
+  auto posed_scratch = octree_->makeBackendScratch();
+  auto restored_scratch = octree_->makeBackendScratch();
+  const Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  std::uniform_real_distribution<double> cap_of(0.0, 0.05);
+  std::vector<double> caps(links), posed(links), restored(links);
+  for (int state = 0; state < 30; ++state) {
+    const std::vector<double> q = freeNearObstacle(*fcl_scratch, *restored_scratch);
+    const RobotData* kept = octree_->posedRobot(*restored_scratch);
+    ASSERT_NE(kept, nullptr);
+    const RobotData copy = *kept;
+    const std::vector<double> elsewhere = freeNearObstacle(*fcl_scratch, *restored_scratch);
+    ASSERT_NE(elsewhere, q);
+    ASSERT_TRUE(octree_->setPosed(copy, *restored_scratch));
+    octree_->setPose(q.data(), q.size(), X, *posed_scratch);
+    for (double& c : caps) c = cap_of(rng_);
+    octree_->motionClearances(*posed_scratch, caps.data(), posed.data());
+    octree_->motionClearances(*restored_scratch, caps.data(), restored.data());
+    for (std::size_t l = 0; l < links; ++l) {
+      if (caps[l] > 0) {
+        EXPECT_EQ(restored[l], posed[l]) << "link " << l << " state " << state;
+      }
+    }
+    for (const auto& [a, b] : robot.checkedPairs()) {
+      const double cap = cap_of(rng_);
+      EXPECT_EQ(octree_->linkPairDistance(*restored_scratch, a, b, cap),
+                octree_->linkPairDistance(*posed_scratch, a, b, cap))
+          << robot.link(a).name << " / " << robot.link(b).name << " state " << state;
+    }
+  }
 }
 
 TEST_P(HullClearance, AcceptedEdgesNearObstaclesAreFreeForFcl) {

@@ -329,7 +329,10 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
     const bool screened = screenedFree(t_edge);
     const bool values_first = exact && t_edge != 0.0 && !screened;
     if (screened || values_first) {
-      backend.setPose(t.q.data(), n, t.X_WB, scratch);  // its clearances only
+      const RobotData* kept = screened ? t.screenPose(t_edge, screened_levels) : nullptr;
+      if (!kept || !backend.setPosed(*kept, scratch)) {
+        backend.setPose(t.q.data(), n, t.X_WB, scratch);  // its clearances only
+      }
     } else if (proofCollides(environment, self)) {
       return false;
     }
@@ -528,20 +531,30 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
     // The collision screen (the header's kScreenLevels): an edge through a colliding state is
     // rejected before any clearance is measured. Not when the last valid state is wanted: that
     // must end a proven part of the edge.
+    // A free state's link poses are kept for the proof (Scratch::screenPose).
+    int levels = 0;
     auto screenCollides = [&](double t_edge) {
       state_checks_.fetch_add(1, std::memory_order_relaxed);
       ++tally.screen_checks;
       if (!place(t_edge)) return true;
-      return backend.inCollision(t.q.data(), n, t.X_WB, *t.backend);
+      if (backend.inCollision(t.q.data(), n, t.X_WB, *t.backend)) return true;
+      if (const RobotData* posed = backend.posedRobot(*t.backend)) {
+        const auto k = static_cast<std::size_t>(std::ldexp(t_edge, levels));
+        t.screen_poses[k] = *posed;
+        t.screen_posed[k] = 1;
+      }
+      return false;
     };
     if (!want_last && screen_levels_ > 0) {
-      const Scratch::Remembered& r2 = rememberedPlace(1.0);
-      bool collides = !(r2.validator == serial_ && r2.key == t.key) && screenCollides(1.0);
-      int levels = 0;
       while (levels < screen_levels_ &&
              std::ldexp(max_bound, -levels) > kScreenTravel * resolution_) {
         ++levels;
       }
+      const std::size_t states = (std::size_t{1} << levels) + 1;
+      if (t.screen_poses.size() < states) t.screen_poses.resize(states, robot.makeData());
+      t.screen_posed.assign(states, 0);
+      const Scratch::Remembered& r2 = rememberedPlace(1.0);
+      bool collides = !(r2.validator == serial_ && r2.key == t.key) && screenCollides(1.0);
       for (int level = 1; level <= levels && !collides; ++level) {
         const double step = std::ldexp(1.0, -level);
         for (double m = step; m < 1.0 && !collides; m += 2 * step) collides = screenCollides(m);

@@ -3,6 +3,7 @@
 
 #include <array>
 #include <atomic>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -60,6 +61,16 @@ struct CertifiedMotionValidator::Scratch {
   void setRates(const LinkMotionBound& bound, const RobotData* posed, std::size_t slot,
                 std::size_t stride, const Interval* in);
   std::vector<Interval> todo;
+  // The link poses of the states the collision screen found free, by k for t = k / 2^levels
+  // (posed[k] when held), so a proof's evaluation there poses the robot without forward
+  // kinematics (CollisionBackend::setPosed).
+  std::vector<RobotData> screen_poses;
+  std::vector<char> screen_posed;
+  // The screen's poses of the state at t_edge (screened at `levels`), or null.
+  const RobotData* screenPose(double t_edge, int levels) const {
+    const auto k = static_cast<std::size_t>(std::ldexp(t_edge, levels));
+    return k < screen_posed.size() && screen_posed[k] ? &screen_poses[k] : nullptr;
+  }
   // Valid ends checked before (direct-mapped by a hash of the configuration): the values of the
   // links and pairs active then, NaN for the others.
   struct Remembered {

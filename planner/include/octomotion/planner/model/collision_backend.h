@@ -99,6 +99,12 @@ class CollisionBackend {
   // The link poses of the scratch's last query (after any of the queries above), or null when
   // the backend keeps none.
   virtual const RobotData* posedRobot(BackendScratch& /*scratch*/) const { return nullptr; }
+  // Poses the robot as setPose would, from link poses that posedRobot gave after an earlier
+  // query of this backend (a copy), without forward kinematics again. False when the backend
+  // cannot (the default): call setPose instead.
+  virtual bool setPosed(const RobotData& /*posed*/, BackendScratch& /*scratch*/) const {
+    return false;
+  }
 
   virtual const RobotModel& robot() const = 0;
   // Unique for the process's lifetime (nextModelId), so per-thread scratch can tell which

@@ -77,6 +77,11 @@ class OctreeBackend final : public CollisionBackend {
   const RobotData* posedRobot(BackendScratch& scratch) const override {
     return &scratchOf(scratch).check.robot;
   }
+  // The octree's queries read nothing of a pose but the link poses.
+  bool setPosed(const RobotData& posed, BackendScratch& scratch) const override {
+    scratchOf(scratch).check.robot = posed;
+    return true;
+  }
 
   const RobotModel& robot() const override { return model_->robot(); }
   std::uint64_t id() const override { return model_->id(); }  // scratch depends on the model only
