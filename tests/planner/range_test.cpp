@@ -76,8 +76,17 @@ TEST(PlannerRange, TheCommandLineSetsTheRangeAndPlannersWithoutOneRefuseIt) {
   auto range = [](const PlanningScene& s) {
     return std::dynamic_pointer_cast<og::RRTConnect>(s.setup->getPlanner())->getRange();
   };
-  // Without a range the planner keeps OMPL's own: 0 until setup() sets a fifth of the extent.
-  EXPECT_EQ(range(loadPlanningScene(scene)), 0.0);
+  // Without a range an arm's planner reaches a tenth of the joint space's extent (OMPL's own
+  // would be a fifth: 0 until setup() sets it).
+  const PlanningScene arm = loadPlanningScene(scene);
+  const double extent = arm.setup->getStateSpace()->getMaximumExtent();
+  EXPECT_GT(extent, 0.0);
+  EXPECT_DOUBLE_EQ(range(arm), kArmRangeShare * extent);
+  // A rigid body keeps OMPL's, and so does the ompl-default validator, the baseline.
+  EXPECT_EQ(range(loadPlanningScene(kSource + "/robots/scenes/rooms.yaml")), 0.0);
+  SceneOverrides baseline;
+  baseline.motion_validator = MotionValidatorKind::kOmplDefault;
+  EXPECT_EQ(range(loadPlanningScene(scene, baseline)), 0.0);
   SceneOverrides overrides;
   overrides.range = 0.3;
   EXPECT_DOUBLE_EQ(range(loadPlanningScene(scene, overrides)), 0.3);

@@ -462,8 +462,15 @@ void setUpOmpl(PlanningScene& scene, bool free_flying, double robot_diagonal, do
     scene.setup->setStartAndGoalStates(start, goal);
   }
   scene.setup->setPlanner(makePlanner(spec.problem.planner, si));
+  std::optional<double> range = spec.problem.range;
+  // ompl-default keeps OMPL's range too.
+  if (!range && !free_flying &&
+      spec.problem.motion_validator != MotionValidatorKind::kOmplDefault &&
+      scene.setup->getPlanner()->params().hasParam("range")) {
+    range = kArmRangeShare * si->getStateSpace()->getMaximumExtent();
+  }
   try {
-    setPlannerRange(*scene.setup->getPlanner(), spec.problem.range);
+    setPlannerRange(*scene.setup->getPlanner(), range);
   } catch (const InvalidArgument& e) {
     throw FileError(spec.path, std::string("problem.range: ") + e.what());
   }

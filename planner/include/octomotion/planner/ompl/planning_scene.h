@@ -193,6 +193,13 @@ ompl::base::PlannerPtr makePlanner(const std::string& name,
 // problem.range with it.
 void setPlannerRange(ompl::base::Planner& planner, std::optional<double> range);
 
+// The range loadPlanningScene gives a planner with one when the scene sets none, for a
+// fixed-base robot: this share of the joint space's extent (OMPL's own default is a fifth).
+// An edge's certified check costs more the farther its links travel, and long edges rarely
+// survive clutter (docs/planner.md, "The planner's range"). Free-flying bodies, and scenes
+// with the ompl-default motion validator, keep OMPL's.
+inline constexpr double kArmRangeShare = 0.1;
+
 struct PlanResult {
   bool solved = false;  // an exact solution was found
   double seconds = 0;   // planning time
