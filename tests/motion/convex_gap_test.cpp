@@ -30,6 +30,12 @@ Eigen::Isometry3d randomPose(std::mt19937_64& rng, double reach) {
   return X;
 }
 
+Eigen::Vector3d randomDirection(std::mt19937_64& rng) {
+  std::normal_distribution<double> n(0.0, 1.0);
+  const Eigen::Vector3d d(n(rng), n(rng), n(rng));
+  return d.squaredNorm() > 0 ? Eigen::Vector3d(d.normalized()) : Eigen::Vector3d::UnitZ();
+}
+
 std::vector<Eigen::Vector3d> randomCloud(std::mt19937_64& rng, int count, double size) {
   std::uniform_real_distribution<double> u(-size, size);
   std::vector<Eigen::Vector3d> points;
@@ -264,14 +270,15 @@ TEST(ConvexGap, RefusesEmptyAndNonFiniteInput) {
 
 // convexDistanceBelow: a certified lower bound. Brute force over every point: its direction
 // leaves the sets at least the bound apart (so it never exceeds their distance), and it never
-// exceeds the closest pair of points (less the radii). Random clouds, radii, poses and caps.
+// exceeds the closest pair of points (less the radii). Random clouds, radii, poses and caps; each
+// again from a given direction.
 TEST(ConvexDistance, EveryBoundHasItsSlabAndStaysBelowEveryPointPair) {
   std::mt19937_64 rng(0xd157);
   std::uniform_int_distribution<int> count(1, 60);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   std::vector<Eigen::Vector3d> pa, pb;
   std::vector<std::array<std::uint32_t, 3>> ta, tb;
-  int positive = 0, zero = 0;
+  int positive = 0, zero = 0, warm_at_cap = 0;
   for (int trial = 0; trial < 4000; ++trial) {
     const bool meshes = trial % 3 == 0;  // non-convex meshes: climbs that stop short
     if (meshes) {
@@ -300,9 +307,22 @@ TEST(ConvexDistance, EveryBoundHasItsSlabAndStaysBelowEveryPointPair) {
     } else {
       ++zero;
     }
+    // A given direction (the answer's, or a stale one) is tried first: the bound stays below
+    // every point pair, equals the first where that did not reach the cap, and reaches the cap
+    // where the first did.
+    Eigen::Vector3d given = trial % 4 == 0 ? v : randomDirection(rng) * (0.1 + unit(rng));
+    const double warm = convexDistanceBelow(a, b, X_AB, cap, &given);
+    EXPECT_LE(warm, std::max(0.0, closest - ra - rb)) << "trial " << trial;
+    if (bound < cap) {
+      EXPECT_EQ(warm, bound) << "trial " << trial;
+    } else {
+      EXPECT_GE(warm, cap) << "trial " << trial;
+      ++warm_at_cap;
+    }
   }
   EXPECT_GT(positive, 300);  // both answers occur
   EXPECT_GT(zero, 300);
+  EXPECT_GT(warm_at_cap, 100);
 }
 
 // Convex sets at a known distance s (two sides of a slab, one point of each on its faces):

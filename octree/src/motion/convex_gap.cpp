@@ -347,10 +347,14 @@ double convexDistanceBelow(const ConvexPoints& a, const ConvexPoints& b,
   const Eigen::Matrix3d R_BA = R_AB.transpose();
   const Eigen::Vector3d p_AB = X_AB.translation();
   const double radii = a.radius() + b.radius();
-  Eigen::Vector3d v = a.centroid() - (R_AB * b.centroid() + p_AB);
+  // A given direction (an earlier answer's) is tried first: its gap over every point is a bound,
+  // the answer when it reaches the cap. GJK itself starts from the centroids' difference, a
+  // point of a - b (its length bounds the distance from above, which the stopping test needs).
   if (direction_A != nullptr && direction_A->allFinite() && direction_A->squaredNorm() > 0) {
-    v = *direction_A;
+    const double given = gapOverEveryPoint(a, b, R_AB, p_AB, *direction_A) - kRounding;
+    if (given >= cap) return std::max(0.0, given);
   }
+  Eigen::Vector3d v = a.centroid() - (R_AB * b.centroid() + p_AB);
   if (!(v.squaredNorm() > 0)) v = Eigen::Vector3d::UnitX();
   // The last non-zero direction, and the best gap found with the supports of every point and
   // its direction.

@@ -60,13 +60,20 @@ double refineLinkDistance(const RefineData& data, RefineScratch& r, const RobotD
   const double reach = hull_L.reach() + hull_L.radius();
   bool posed = false;
   double best = cap;
-  for (const RefineObject& object : data.objects) {
+  const std::size_t objects = data.objects.size();
+  if (r.link_object_directions.size() != data.link_elements.size() * objects) {
+    r.link_object_directions.assign(data.link_elements.size() * objects, Eigen::Vector3d::Zero());
+  }
+  for (std::size_t i = 0; i < objects; ++i) {
+    const RefineObject& object = data.objects[i];
     if (object.shapes.empty()) continue;
     if (!hull_L.empty()) {
       if (distanceToBox(object.box_W, centre_W) - reach >= best) continue;
       if (!object.hull_O.empty()) {
+        Eigen::Vector3d& direction_O =
+            r.link_object_directions[static_cast<std::size_t>(link) * objects + i];
         const double h = convexDistanceBelow(object.hull_O, hull_L, object.X_OW * X_WL, best,
-                                             nullptr, kHullTolerance);
+                                             &direction_O, kHullTolerance);
         if (h >= best || h > hullTrusted(grid, object)) {
           ++r.hull_distances;
           best = std::min(best, h);

@@ -84,8 +84,10 @@ bool convexApart(const ConvexPoints& a, const ConvexPoints& b, const Eigen::Isom
 // direction, so a wrong or unfinished run makes the bound smaller, never too large. 0 when they
 // overlap. GJK stops early once the bound reaches `cap`; otherwise it runs until the distance is
 // found to about `tolerance` relative (GJK's upper bound on the distance within that fraction of
-// its lower one), so for convex sets the bound is their distance up to that. `direction_A` as in
-// convexApart: it starts the search and receives the bound's direction.
+// its lower one), so for convex sets the bound is their distance up to that. `direction_A`, when
+// given and non-zero, is tried first (an earlier answer's direction: its slab over every point
+// is the answer when it reaches `cap`, else GJK runs as without it) and receives the bound's
+// direction.
 double convexDistanceBelow(const ConvexPoints& a, const ConvexPoints& b,
                            const Eigen::Isometry3d& X_AB, double cap,
                            Eigen::Vector3d* direction_A = nullptr, double tolerance = 1e-9);

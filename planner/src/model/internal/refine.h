@@ -166,6 +166,10 @@ struct RefineScratch {
   std::vector<RecentOutcomes> pair_verdicts;
   RecentOutcomes half_contacts;    // second: the self pairs'
   std::vector<char> object_apart;  // refineLinkHits' per-object hull verdicts
+  // Per link and object (link * objects + object): the direction of the last hull distance
+  // between them (refine_clearance.cpp), where GJK starts the next; a wrong one costs iterations,
+  // never the bound.
+  std::vector<Eigen::Vector3d> link_object_directions;
   RefineCounts counts;
   // Distances for the certified motion validator (refine_clearance.cpp): link-object and
   // link-link distances answered by their hulls' bound, and FCL distance calls (one per element
