@@ -250,6 +250,8 @@ RefineScratch& refineScratch(const RefineData& data, const RobotModel& model, st
     scratch->owner = owner;
     data.robot->initScratch(model, scratch->fcl);
     scratch->posed_at.assign(data.robot->elementCount(), 0);
+    scratch->link_object_directions.assign(data.link_elements.size() * data.objects.size(),
+                                           Eigen::Vector3d::Zero());
     h.reset(std::move(scratch));
   }
   RefineScratch& r = *h.get();

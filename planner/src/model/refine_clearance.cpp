@@ -61,9 +61,6 @@ double refineLinkDistance(const RefineData& data, RefineScratch& r, const RobotD
   bool posed = false;
   double best = cap;
   const std::size_t objects = data.objects.size();
-  if (r.link_object_directions.size() != data.link_elements.size() * objects) {
-    r.link_object_directions.assign(data.link_elements.size() * objects, Eigen::Vector3d::Zero());
-  }
   for (std::size_t i = 0; i < objects; ++i) {
     const RefineObject& object = data.objects[i];
     if (object.shapes.empty()) continue;

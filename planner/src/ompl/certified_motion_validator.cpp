@@ -539,9 +539,7 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
       if (!place(t_edge)) return true;
       if (backend.inCollision(t.q.data(), n, t.X_WB, *t.backend)) return true;
       if (const RobotData* posed = backend.posedRobot(*t.backend)) {
-        const auto k = static_cast<std::size_t>(std::ldexp(t_edge, levels));
-        t.screen_poses[k] = *posed;
-        t.screen_posed[k] = 1;
+        t.keepScreenPose(t_edge, levels, *posed);
       }
       return false;
     };

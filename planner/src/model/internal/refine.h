@@ -167,8 +167,9 @@ struct RefineScratch {
   RecentOutcomes half_contacts;    // second: the self pairs'
   std::vector<char> object_apart;  // refineLinkHits' per-object hull verdicts
   // Per link and object (link * objects + object): the direction of the last hull distance
-  // between them (refine_clearance.cpp), where GJK starts the next; a wrong one costs iterations,
-  // never the bound.
+  // between them (refine_clearance.cpp), tried first by the next (convexDistanceBelow); a stale
+  // one costs a support pair, never the bound. Sized when the scratch is made: a model's refine
+  // data never changes (world updates refuse exact refine).
   std::vector<Eigen::Vector3d> link_object_directions;
   RefineCounts counts;
   // Distances for the certified motion validator (refine_clearance.cpp): link-object and

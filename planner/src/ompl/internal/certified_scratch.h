@@ -66,10 +66,19 @@ struct CertifiedMotionValidator::Scratch {
   // kinematics (CollisionBackend::setPosed).
   std::vector<RobotData> screen_poses;
   std::vector<char> screen_posed;
+  // Keeps the poses of the state at t_edge, screened at `levels`.
+  void keepScreenPose(double t_edge, int levels, const RobotData& posed) {
+    const std::size_t k = screenIndex(t_edge, levels);
+    screen_poses[k] = posed;
+    screen_posed[k] = 1;
+  }
   // The screen's poses of the state at t_edge (screened at `levels`), or null.
   const RobotData* screenPose(double t_edge, int levels) const {
-    const auto k = static_cast<std::size_t>(std::ldexp(t_edge, levels));
+    const std::size_t k = screenIndex(t_edge, levels);
     return k < screen_posed.size() && screen_posed[k] ? &screen_poses[k] : nullptr;
+  }
+  static std::size_t screenIndex(double t_edge, int levels) {
+    return static_cast<std::size_t>(std::ldexp(t_edge, levels));
   }
   // Valid ends checked before (direct-mapped by a hash of the configuration): the values of the
   // links and pairs active then, NaN for the others.
