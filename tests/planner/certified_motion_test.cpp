@@ -44,7 +44,8 @@ std::string scenePath(const std::string& name) {
 
 // For random straight-line motions in q, the polyline through FK samples of every sampled point
 // (shorter than its path) stays within LinkMotionBound::linkBound; over the first and last
-// parts of the motion, within the posed bound from that part's posed end (linkRate, growth).
+// parts of the motion, within the posed bounds from that part's posed end (linkRate with the
+// growth, linkSpeed with the speed growth).
 void expectArmBoundHolds(const RobotModel& robot, int motions, std::uint64_t seed) {
   const LinkMotionBound bound(robot);
   CollisionMeshes meshes(false, false);
@@ -54,9 +55,10 @@ void expectArmBoundHolds(const RobotModel& robot, int motions, std::uint64_t see
   RobotData data = robot.makeData();
   const auto n = static_cast<std::size_t>(robot.variableCount());
   constexpr int kSteps = 64;
-  int tight_links = 0, tight_posed = 0, tighter_posed = 0;
+  int tight_links = 0, tight_posed = 0, tighter_posed = 0, tight_speed = 0, tighter_speed = 0;
   LinkMotionBound::EdgeTerms terms;
-  std::vector<double> arms_start(bound.armCount()), arms_end(bound.armCount());
+  std::vector<double> arms_start(bound.armCount() * LinkMotionBound::kArmValues),
+      arms_end(bound.armCount() * LinkMotionBound::kArmValues);
   for (int m = 0; m < motions; ++m) {
     std::vector<double> q1(n), q2(n), dq(n), q(n);
     for (std::size_t v = 0; v < n; ++v) {
@@ -100,17 +102,24 @@ void expectArmBoundHolds(const RobotModel& robot, int motions, std::uint64_t see
       EXPECT_LE(most(0, kSteps), limit + 1e-9) << robot.link(link).name << " motion " << m;
       tight_links += most(0, kSteps) > 0.25 * limit ? 1 : 0;
       const double growth = terms.link_growth[l];
-      for (int part : {kSteps / 8, kSteps / 2, kSteps}) {
+      const double speed_growth = terms.link_speed_growth[l];
+      for (int part : {kSteps / 32, kSteps / 8, kSteps / 2, kSteps}) {
         const double s = static_cast<double>(part) / kSteps;
         for (const bool from_start : {true, false}) {
-          const double rate =
-              bound.linkRate(link, terms, from_start ? arms_start.data() : arms_end.data());
-          const double posed = rate * s + 0.5 * growth * s * s;
+          const double* arms = from_start ? arms_start.data() : arms_end.data();
+          const double posed = bound.linkRate(link, terms, arms) * s + 0.5 * growth * s * s;
+          const double by_speed =
+              bound.linkSpeed(link, terms, arms) * s + 0.5 * speed_growth * s * s;
           const double travel = from_start ? most(0, part) : most(kSteps - part, kSteps);
           EXPECT_LE(travel, posed + 1e-9) << robot.link(link).name << " motion " << m << " part "
                                           << s << " from " << (from_start ? "start" : "end");
+          EXPECT_LE(travel, by_speed + 1e-9)
+              << robot.link(link).name << " motion " << m << " part " << s << " from "
+              << (from_start ? "start" : "end") << " (speed)";
           tight_posed += travel > 0.5 * posed ? 1 : 0;
           tighter_posed += posed < 0.75 * limit * s ? 1 : 0;
+          tight_speed += travel > 0.5 * by_speed ? 1 : 0;
+          tighter_speed += by_speed < 0.75 * posed ? 1 : 0;
         }
       }
     }
@@ -120,6 +129,8 @@ void expectArmBoundHolds(const RobotModel& robot, int motions, std::uint64_t see
   EXPECT_GT(tight_links, 0);
   EXPECT_GT(tight_posed, 0);
   EXPECT_GT(tighter_posed, 0);
+  EXPECT_GT(tight_speed, 0);
+  EXPECT_GT(tighter_speed, 0);
 }
 
 TEST(LinkMotionBound, NoPointOfOcto7TravelsFartherThanItsBound) {
@@ -127,6 +138,14 @@ TEST(LinkMotionBound, NoPointOfOcto7TravelsFartherThanItsBound) {
   options.package_paths = {kSource};
   const RobotModel robot = RobotModel::fromUrdfFile(kSource + "/robots/octo7/octo7.urdf", options);
   expectArmBoundHolds(robot, 40, 3);
+}
+
+// A planar arm whose gripper's right finger mimics the left one with multiplier -1 (a prismatic
+// joint: the speed's sign matters).
+TEST(LinkMotionBound, NoPointOfTheTestArmTravelsFartherThanItsBound) {
+  const RobotModel robot =
+      RobotModel::fromUrdfFile(std::string(OCTOMOTION_TEST_DATA_DIR) + "/urdf/arm.urdf");
+  expectArmBoundHolds(robot, 40, 13);
 }
 
 TEST(LinkMotionBound, NoPointOfThePandaTravelsFartherThanItsBound) {

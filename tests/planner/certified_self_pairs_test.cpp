@@ -81,7 +81,8 @@ int commonAncestor(const RobotModel& robot, int a, int b) {
 // distance between the two links is measured as in the world): the longest polyline of a
 // sampled point of link a plus the longest of link b (each shorter than its path) stays within
 // pairBound, which therefore bounds how much the pair's distance can change; over the first and
-// last parts of the motion, within the posed bound from that part's posed end (pairRate, growth).
+// last parts of the motion, within the posed bounds from that part's posed end (pairRate with
+// the growth, pairSpeed with the speed growth).
 void expectPairBoundHolds(const RobotModel& robot, int motions, std::uint64_t seed) {
   SCOPED_TRACE(robot.name());
   const LinkMotionBound bound(robot);
@@ -97,9 +98,10 @@ void expectPairBoundHolds(const RobotModel& robot, int motions, std::uint64_t se
   std::vector<int> ancestor;
   for (const auto& [a, b] : bound.pairs()) ancestor.push_back(commonAncestor(robot, a, b));
   constexpr int kSteps = 64;
-  int tight = 0, tight_posed = 0, tighter_posed = 0;
+  int tight = 0, tight_posed = 0, tighter_posed = 0, tight_speed = 0, tighter_speed = 0;
   LinkMotionBound::EdgeTerms terms;
-  std::vector<double> arms_start(bound.armCount()), arms_end(bound.armCount());
+  std::vector<double> arms_start(bound.armCount() * LinkMotionBound::kArmValues),
+      arms_end(bound.armCount() * LinkMotionBound::kArmValues);
   for (int m = 0; m < motions; ++m) {
     const std::vector<double> q1 = uniformQ(robot, rng), q2 = uniformQ(robot, rng);
     std::vector<double> dq(n), q(n);
@@ -151,16 +153,22 @@ void expectPairBoundHolds(const RobotModel& robot, int motions, std::uint64_t se
       const double limit = bound.pairBound(p, dq.data());
       EXPECT_LE(most(0, kSteps), limit + 1e-9) << names << " motion " << m;
       tight += most(0, kSteps) > 0.25 * limit ? 1 : 0;
-      for (int part : {kSteps / 8, kSteps / 2, kSteps}) {
+      for (int part : {kSteps / 32, kSteps / 8, kSteps / 2, kSteps}) {
         const double s = static_cast<double>(part) / kSteps;
         for (const bool from_start : {true, false}) {
-          const double rate =
-              bound.pairRate(p, terms, from_start ? arms_start.data() : arms_end.data());
-          const double posed = rate * s + 0.5 * terms.pair_growth[p] * s * s;
+          const double* arms = from_start ? arms_start.data() : arms_end.data();
+          const double posed =
+              bound.pairRate(p, terms, arms) * s + 0.5 * terms.pair_growth[p] * s * s;
+          const double by_speed =
+              bound.pairSpeed(p, terms, arms) * s + 0.5 * terms.pair_speed_growth[p] * s * s;
           const double travel = from_start ? most(0, part) : most(kSteps - part, kSteps);
           EXPECT_LE(travel, posed + 1e-9) << names << " motion " << m << " part " << s;
+          EXPECT_LE(travel, by_speed + 1e-9)
+              << names << " motion " << m << " part " << s << " (speed)";
           tight_posed += travel > 0.5 * posed ? 1 : 0;
           tighter_posed += posed < 0.75 * limit * s ? 1 : 0;
+          tight_speed += travel > 0.5 * by_speed ? 1 : 0;
+          tighter_speed += by_speed < 0.75 * posed ? 1 : 0;
         }
       }
     }
@@ -170,6 +178,8 @@ void expectPairBoundHolds(const RobotModel& robot, int motions, std::uint64_t se
   EXPECT_GT(tight, 0);
   EXPECT_GT(tight_posed, 0);
   EXPECT_GT(tighter_posed, 0);
+  EXPECT_GT(tight_speed, 0);
+  EXPECT_GT(tighter_speed, 0);
 }
 
 TEST(PairMotionBound, Octo7sPairsTravelNoFartherThanTheirBound) {

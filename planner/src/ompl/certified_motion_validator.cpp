@@ -223,9 +223,11 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
   // bounds), tighter than the edge's where the arm is not stretched.
   const std::size_t arm_count = direct ? bound_->armCount() : 0;
   if (direct) bound_->edgeTerms(t.dq.data(), t.terms);
-  t.arms.resize(arm_count);
+  t.arms.resize(arm_count * LinkMotionBound::kArmValues);
   t.link_rate.clear();
   t.pair_rate.clear();
+  t.link_speed.clear();
+  t.pair_speed.clear();
   constexpr double kNoRate = std::numeric_limits<double>::infinity();
   const ob::SpaceInformation* si = si_;
   if (!direct) t.useSpace(si->getStateSpace());
@@ -235,31 +237,24 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
   // stop early. At an end (no interval), the edge's bound from it. At the midpoint of [a, b],
   // enough to prove both halves at once, each half's bound less the value at its outer end, plus
   // a 512th of the half's bound; 0 (not computed) for one already proven over [a, b]. A half's
-  // bound is the edge's, or the posed bound from the end of it with the smaller rate.
-  // Link (pair) i's rate at an evaluated state (+inf when not computed there, or none).
-  auto rateAt = [&](bool pair, std::size_t slot, std::size_t i) {
-    if (arm_count == 0) return kNoRate;
-    return pair ? t.pair_rate[slot * pairs + i] : t.link_rate[slot * stride + i];
-  };
+  // bound is the edge's, or the posed bounds from its ends (Scratch::posedBound).
   // Link (pair) i's bound over a part of length s of the edge: the edge's times s, or less,
-  // the posed bound from an end of the part with the given rate.
-  auto boundOver = [&](bool pair, std::size_t i, double s, double rate) {
+  // the posed bounds from the ends (slots) of the part.
+  auto boundOver = [&](bool pair, std::size_t i, double s, std::size_t slot_a, std::size_t slot_b) {
     const double whole = (pair ? t.pair_bound[i] : t.link_bound[i]) * s;
     if (arm_count == 0) return whole;
-    const double growth = pair ? t.terms.pair_growth[i] : t.terms.link_growth[i];
-    return std::min(whole, rate * s + 0.5 * growth * s * s);
+    return std::min(whole, t.posedBound(pair, i, s, slot_a, slot_b, stride, pairs));
   };
   auto capOf = [&](const Scratch::Interval* in, std::size_t slot, std::size_t k, std::size_t i,
                    bool pair) {
-    if (!in) return boundOver(pair, i, 1.0, rateAt(pair, slot, i));
+    if (!in) return boundOver(pair, i, 1.0, slot, slot);
     if (k < 64 && ((pair ? in->pairs_done : in->links_done) >> k & 1)) return 0.0;
     const std::vector<double>& values = pair ? t.distance : t.clearance;
     const std::size_t width = pair ? pairs : stride;
     const double h = 0.5 * (in->b - in->a);
     double need = 0.0, most = 0.0;
     for (const std::size_t end : {in->slot_a, in->slot_b}) {
-      const double half =
-          boundOver(pair, i, h, std::min(rateAt(pair, slot, i), rateAt(pair, end, i)));
+      const double half = boundOver(pair, i, h, slot, end);
       need = std::max(need, half - values[end * width + i]);
       most = std::max(most, half);
     }
@@ -303,6 +298,8 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
     if (arm_count > 0) {
       t.link_rate.resize(t.link_rate.size() + stride, kNoRate);
       t.pair_rate.resize(t.pair_rate.size() + pairs, kNoRate);
+      t.link_speed.resize(t.link_speed.size() + stride, kNoRate);
+      t.pair_speed.resize(t.pair_speed.size() + pairs, kNoRate);
     }
     return slot;
   };
@@ -424,7 +421,7 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
       const std::size_t i = active[k];
       double b = bound[i] * s;
       if (arm_count > 0 && b > decided_by_ends && b >= va[i] + vb[i]) {
-        b = boundOver(pair, i, s, std::min(rateAt(pair, in.slot_a, i), rateAt(pair, in.slot_b, i)));
+        b = boundOver(pair, i, s, in.slot_a, in.slot_b);
       }
       if (b <= decided_by_ends || b < va[i] + vb[i]) {
         if (k < 64) done |= std::uint64_t{1} << k;

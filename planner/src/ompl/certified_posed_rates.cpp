@@ -14,6 +14,8 @@ void CertifiedMotionValidator::Scratch::setRates(const LinkMotionBound& bound,
   const std::size_t pairs = bound.pairs().size();
   double* links = link_rate.data() + slot * stride;
   double* pair_values = pair_rate.data() + slot * pairs;
+  double* link_speeds = link_speed.data() + slot * stride;
+  double* pair_speeds = pair_speed.data() + slot * pairs;
   // An end's arms are every link's (remembered with the end).
   if (posed && !in) bound.posedArms(*posed, arms.data());
   armed.assign(stride, posed && in ? 0 : 1);
@@ -29,6 +31,7 @@ void CertifiedMotionValidator::Scratch::setRates(const LinkMotionBound& bound,
     const int l = static_cast<int>(active_links[k]);
     arm(l);
     links[l] = bound.linkRate(l, terms, arms.data());
+    link_speeds[l] = bound.linkSpeed(l, terms, arms.data());
   }
   for (std::size_t k = 0; k < active_pairs.size(); ++k) {
     if (k < 64 && (pairs_done >> k & 1)) continue;
@@ -36,6 +39,7 @@ void CertifiedMotionValidator::Scratch::setRates(const LinkMotionBound& bound,
     arm(bound.pairs()[p].first);
     arm(bound.pairs()[p].second);
     pair_values[p] = bound.pairRate(p, terms, arms.data());
+    pair_speeds[p] = bound.pairSpeed(p, terms, arms.data());
   }
 }
 

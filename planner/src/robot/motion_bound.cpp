@@ -225,9 +225,11 @@ LinkMotionBound::LinkMotionBound(const RobotModel& robot, bool keep_mesh_root_tr
         });
       }
       const double multiplier = joint.isMimic() ? std::abs(joint.mimic_multiplier) : 1.0;
+      const double sign = joint.isMimic() && joint.mimic_multiplier < 0 ? -1.0 : 1.0;
       levers_[static_cast<std::size_t>(l * variable_count_ + variable)] += multiplier * arm;
-      path_joints_.push_back({path[i], variable, joint.child_link, multiplier, arm,
+      path_joints_.push_back({path[i], variable, joint.child_link, multiplier, arm, sign,
                               joint.type != JointType::kPrismatic, joint.axis.normalized()});
+      arm_link_.push_back(l);
     }
   }
   path_begin_.push_back(path_joints_.size());
@@ -266,26 +268,38 @@ void LinkMotionBound::posedArms(const RobotData& data, int link, double* arms) c
   const Eigen::Vector3d centre_W = data.linkPose(link) * sphere.center;
   for (std::size_t k = begin; k < end; ++k) {
     const PathJoint& j = path_joints_[k];
-    if (!j.revolute) {
-      arms[k] = 1.0;
-      continue;
-    }
+    double* arm = arms + k * kArmValues;
+    Eigen::Map<Eigen::Vector3d> velocity(arm + 1), turn(arm + 4);
     // The axis passes through the joint's child frame's origin, along its axis there.
     const Eigen::Isometry3d& X_WC = data.linkPose(j.axis_link);
     const Eigen::Vector3d u_W = X_WC.linear() * j.axis;
-    const double from_axis = u_W.cross(centre_W - X_WC.translation()).norm();
+    if (!j.revolute) {
+      arm[0] = 1.0;
+      velocity = u_W;
+      turn.setZero();
+      continue;
+    }
+    velocity = u_W.cross(centre_W - X_WC.translation());
+    turn = u_W;
     // A micrometre covers rounding in the poses.
-    arms[k] = std::min(j.lever, from_axis + sphere.radius + 1e-6);
+    arm[0] = std::min(j.lever, velocity.norm() + sphere.radius + 1e-6);
   }
 }
 
 void LinkMotionBound::edgeTerms(const double* dq, EdgeTerms& terms) const {
-  terms.weight.resize(path_joints_.size());
+  const std::size_t arm_count = path_joints_.size();
+  terms.weight.resize(arm_count);
+  terms.signed_weight.resize(arm_count);
   terms.link_growth.assign(static_cast<std::size_t>(link_count_), 0.0);
+  terms.link_speed_growth.assign(static_cast<std::size_t>(link_count_), 0.0);
   terms.pair_growth.assign(pairs_.size(), 0.0);
+  terms.pair_speed_growth.assign(pairs_.size(), 0.0);
   // Per arm, its weight times S_j (the levers below j on the link's path times their weights).
   std::vector<double>& below = terms.arm_growth;
-  below.assign(path_joints_.size(), 0.0);
+  below.assign(arm_count, 0.0);
+  // Per arm, T_j: its own and the levers below it times their weights (the speed growth's).
+  std::vector<double>& from = terms.arm_reach;
+  from.assign(arm_count, 0.0);
   for (int l : geometry_links_) {
     const std::size_t begin = path_begin_[static_cast<std::size_t>(l)];
     const std::size_t end = path_begin_[static_cast<std::size_t>(l) + 1];
@@ -295,11 +309,14 @@ void LinkMotionBound::edgeTerms(const double* dq, EdgeTerms& terms) const {
       const PathJoint& j = path_joints_[k];
       const double w = std::abs(dq[j.variable]) * j.multiplier;
       terms.weight[k] = w;
+      terms.signed_weight[k] = dq[j.variable] * j.multiplier * j.sign;
       below[k] = j.revolute ? w * speed_below : 0.0;
       growth += below[k];
       speed_below += w * j.lever;
+      from[k] = speed_below;
     }
     terms.link_growth[static_cast<std::size_t>(l)] = growth;
+    terms.link_speed_growth[static_cast<std::size_t>(l)] = speedGrowth(terms, begin, end, nullptr);
   }
   for (std::size_t p = 0; p < pairs_.size(); ++p) {
     double growth = 0.0;
@@ -307,14 +324,35 @@ void LinkMotionBound::edgeTerms(const double* dq, EdgeTerms& terms) const {
       growth += below[pair_arms_[i]];
     }
     terms.pair_growth[p] = growth;
+    terms.pair_speed_growth[p] =
+        speedGrowth(terms, pair_begin_[p], pair_begin_[p + 1], pair_arms_.data());
   }
+}
+
+double LinkMotionBound::speedGrowth(const EdgeTerms& terms, std::size_t begin, std::size_t end,
+                                    const std::size_t* indices) const {
+  // Arms of one link's path in order, root first (a pair's: each link's in turn, a suffix of
+  // its path); Omega restarts at each link's first.
+  double growth = 0.0, omega = 0.0;
+  int link_path = -1;
+  for (std::size_t i = begin; i < end; ++i) {
+    const std::size_t k = indices ? indices[i] : i;
+    const int path = pathOf(k);
+    if (path != link_path) omega = 0.0;
+    link_path = path;
+    const PathJoint& j = path_joints_[k];
+    const double w = terms.weight[k];
+    growth += w * (omega * j.lever + (j.revolute ? terms.arm_reach[k] : 0.0));
+    if (j.revolute) omega += w;
+  }
+  return growth;
 }
 
 double LinkMotionBound::linkRate(int link, const EdgeTerms& terms, const double* arms) const {
   double rate = 0.0;
   const std::size_t end = path_begin_[static_cast<std::size_t>(link) + 1];
   for (std::size_t k = path_begin_[static_cast<std::size_t>(link)]; k < end; ++k) {
-    rate += terms.weight[k] * arms[k];
+    rate += terms.weight[k] * arms[k * kArmValues];
   }
   return rate;
 }
@@ -322,9 +360,45 @@ double LinkMotionBound::linkRate(int link, const EdgeTerms& terms, const double*
 double LinkMotionBound::pairRate(std::size_t p, const EdgeTerms& terms, const double* arms) const {
   double rate = 0.0;
   for (std::size_t i = pair_begin_[p]; i < pair_begin_[p + 1]; ++i) {
-    rate += terms.weight[pair_arms_[i]] * arms[pair_arms_[i]];
+    rate += terms.weight[pair_arms_[i]] * arms[pair_arms_[i] * kArmValues];
   }
   return rate;
+}
+
+double LinkMotionBound::speedOver(const EdgeTerms& terms, const double* arms, std::size_t begin,
+                                  std::size_t end, const std::size_t* indices) const {
+  // Per link among the arms (one, or a pair's two in turn): |V| + |W| r.
+  double speed = 0.0;
+  Eigen::Vector3d V = Eigen::Vector3d::Zero(), W = Eigen::Vector3d::Zero();
+  int link_path = -1;
+  auto close = [&] {
+    if (link_path < 0) return;
+    speed += V.norm() + W.norm() * spheres_[static_cast<std::size_t>(link_path)].radius + 1e-6;
+    V.setZero();
+    W.setZero();
+  };
+  for (std::size_t i = begin; i < end; ++i) {
+    const std::size_t k = indices ? indices[i] : i;
+    const int path = pathOf(k);
+    if (path != link_path) {
+      close();
+      link_path = path;
+    }
+    const double* arm = arms + k * kArmValues;
+    V += terms.signed_weight[k] * Eigen::Map<const Eigen::Vector3d>(arm + 1);
+    W += terms.signed_weight[k] * Eigen::Map<const Eigen::Vector3d>(arm + 4);
+  }
+  close();
+  return speed;
+}
+
+double LinkMotionBound::linkSpeed(int link, const EdgeTerms& terms, const double* arms) const {
+  return speedOver(terms, arms, path_begin_[static_cast<std::size_t>(link)],
+                   path_begin_[static_cast<std::size_t>(link) + 1], nullptr);
+}
+
+double LinkMotionBound::pairSpeed(std::size_t p, const EdgeTerms& terms, const double* arms) const {
+  return speedOver(terms, arms, pair_begin_[p], pair_begin_[p + 1], pair_arms_.data());
 }
 
 // Spheres that hold the hull of a link's points (its geometry): one about their box's centre

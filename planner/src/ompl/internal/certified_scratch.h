@@ -1,6 +1,7 @@
 // The certified motion validator's per-thread working memory (certified_motion_validator.cpp).
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <atomic>
 #include <cmath>
@@ -50,16 +51,30 @@ struct CertifiedMotionValidator::Scratch {
   std::vector<std::size_t> active_pairs;
   std::vector<double> clearance, distance;  // per evaluated state: per link, per pair
   // Fixed-base robots, the posed bounds (LinkMotionBound): the edge's terms; per evaluated state,
-  // the rates of the links and pairs it was evaluated for (+inf for the others); the arms of the
-  // state at hand and, per link, whether they are computed.
+  // the rates and speeds of the links and pairs it was evaluated for (+inf for the others); the
+  // arms of the state at hand and, per link, whether they are computed.
   LinkMotionBound::EdgeTerms terms;
-  std::vector<double> link_rate, pair_rate, arms;
+  std::vector<double> link_rate, pair_rate, link_speed, pair_speed, arms;
   std::vector<char> armed;
   // Sets a slot's rates at the pose `posed`: of every active link and pair at an end (`in`
   // null; every link's arms computed, or already in `arms` when `posed` is null), else of those
   // not proven over the interval `in` it halves (all that its halves' descendants test).
   void setRates(const LinkMotionBound& bound, const RobotData* posed, std::size_t slot,
                 std::size_t stride, const Interval* in);
+  // Link (pair) i's posed bound over a part of length s whose ends are evaluated in slots a and
+  // b: the smaller of the rates' and the speeds' (each from the end where it is smaller); +inf
+  // when neither end has them.
+  double posedBound(bool pair, std::size_t i, double s, std::size_t a, std::size_t b,
+                    std::size_t stride, std::size_t pairs) const {
+    const std::vector<double>& rate = pair ? pair_rate : link_rate;
+    const std::vector<double>& speed = pair ? pair_speed : link_speed;
+    const std::size_t width = pair ? pairs : stride;
+    const double r = std::min(rate[a * width + i], rate[b * width + i]);
+    const double v = std::min(speed[a * width + i], speed[b * width + i]);
+    const double growth = pair ? terms.pair_growth[i] : terms.link_growth[i];
+    const double speed_growth = pair ? terms.pair_speed_growth[i] : terms.link_speed_growth[i];
+    return std::min(r * s + 0.5 * growth * s * s, v * s + 0.5 * speed_growth * s * s);
+  }
   std::vector<Interval> todo;
   // The link poses of the states the collision screen found free, by k for t = k / 2^levels
   // (posed[k] when held), so a proof's evaluation there poses the robot without forward

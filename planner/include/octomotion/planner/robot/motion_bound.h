@@ -117,32 +117,62 @@ class LinkMotionBound {
   // growth = sum_j |dq_v(j)| m_j S_j (EdgeTerms). d_j(0) is bounded by the distance from the
   // axis to the link's sphere (its centre's plus its radius) and by j's lever (posedArms).
   //
-  // Per link and each movable joint on its path ("arms"): armCount() values, posedArms writes
-  // those of one link (or of every link).
+  // A second posed bound keeps the joints' directions (linkSpeed, pairSpeed): the velocity of a
+  // point x is sum_j dq_v(j) m_j u_j(x), u_j(x) = w_j x (x - p_j) for a revolute joint (axis w_j
+  // through p_j) and w_j for a prismatic one, so over the link's sphere (centre c, radius r)
+  // the speed is at most |V| + |W| r, V = sum_j dq_j m_j u_j(c), W = sum_j dq_j m_j w_j over its
+  // revolute joints. Where the joints' motions partly cancel (an elbow bending back while the
+  // shoulder lifts) it is well below the sum of the arms. Along the motion, u_j turns with the
+  // frame of j's parent (at most Omega_j = sum of |dq| m over the revolute joints above j) and
+  // changes with the motion of x relative to that frame (at most T_j = sum over j and the joints
+  // below it of |dq| m times their lever), so the speed grows at most at
+  // sum_j |dq_j| m_j (Omega_j lever_j + T_j) (speed growth; a prismatic joint's term has no T_j).
+  // A pair's distance changes at most at the sum of its two links' speeds relative to their
+  // common ancestor: the same sums over the pair's arms alone.
+  //
+  // Per link and each movable joint on its path ("arms"): armCount() arms of kArmValues values
+  // each (the distance to the axis, V's and W's terms), posedArms writes those of one link (or
+  // of every link).
+  static constexpr std::size_t kArmValues = 7;
   std::size_t armCount() const { return path_joints_.size(); }
   void posedArms(const RobotData& data, int link, double* arms) const;
   void posedArms(const RobotData& data, double* arms) const {
     for (int l : geometry_links_) posedArms(data, l, arms);
   }
-  // A straight-line motion's weights (|dq_v(j)| m_j per arm) and growth per link and per pair.
+  // A straight-line motion's weights (|dq_v(j)| m_j per arm, and signed) and the growths of the
+  // rates and of the speeds, per link and per pair.
   struct EdgeTerms {
-    std::vector<double> weight, link_growth, pair_growth;
+    std::vector<double> weight, signed_weight, link_growth, pair_growth;
     std::vector<double> arm_growth;  // per arm, its part of the growth
+    std::vector<double> arm_reach;   // per arm, T_j
+    std::vector<double> link_speed_growth, pair_speed_growth;
   };
   void edgeTerms(const double* dq, EdgeTerms& terms) const;
   // The rate of link l (pair p) at a pose whose arms are given, for the motion of `terms`.
   double linkRate(int link, const EdgeTerms& terms, const double* arms) const;
   double pairRate(std::size_t p, const EdgeTerms& terms, const double* arms) const;
+  // The speed bound of link l (pair p) at a pose whose arms are given (with the speed growth).
+  double linkSpeed(int link, const EdgeTerms& terms, const double* arms) const;
+  double pairSpeed(std::size_t p, const EdgeTerms& terms, const double* arms) const;
 
  private:
   // A movable joint on a link's path from the root (root first), with its fixed lever.
   struct PathJoint {
     int joint, variable, axis_link;  // axis_link: the joint's child, whose frame holds the axis
-    double multiplier, lever;
+    double multiplier, lever;        // multiplier: the mimic multiplier's magnitude
+    double sign;                     // the mimic multiplier's sign
     bool revolute;
     Eigen::Vector3d axis;  // unit, in axis_link's frame
   };
-  std::vector<PathJoint> path_joints_;               // per link, in order (path_begin_ per link)
+  std::vector<PathJoint> path_joints_;  // per link, in order (path_begin_ per link)
+  std::vector<int> arm_link_;           // per arm, the link whose path holds it
+  int pathOf(std::size_t arm) const { return arm_link_[arm]; }
+  // The speed growth and the speed over arms [begin, end) (of `indices` when given): one link's
+  // path, or a pair's arms (each link's in turn).
+  double speedGrowth(const EdgeTerms& terms, std::size_t begin, std::size_t end,
+                     const std::size_t* indices) const;
+  double speedOver(const EdgeTerms& terms, const double* arms, std::size_t begin, std::size_t end,
+                   const std::size_t* indices) const;
   std::vector<std::size_t> path_begin_;              // linkCount() + 1 offsets
   std::vector<std::size_t> pair_arms_, pair_begin_;  // per pair: its arms (pairBound's joints)
   struct Spheres {
