@@ -88,7 +88,7 @@ class CertifiedMotionValidator : public ompl::base::MotionValidator {
   // down to the level where the edge's bound between them is at most kScreenTravel resolutions
   // and at most kScreenLevels levels (2^kScreenLevels - 1 midpoints): a colliding edge is
   // rejected there, cheaply; the proof is spent only on edges that pass it.
-  static constexpr int kScreenLevels = 3;
+  static constexpr int kScreenLevels = 2;
   static constexpr double kScreenTravel = 4.0;
 
   // Counters since construction (or resetCounts): state checks that test the environment (with
