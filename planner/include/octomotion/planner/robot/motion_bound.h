@@ -118,14 +118,14 @@ class LinkMotionBound {
   // axis to the link's sphere (its centre's plus its radius) and by j's lever (posedArms).
   //
   // A second posed bound keeps the joints' directions (linkSpeed, pairSpeed): the velocity of a
-  // point x is sum_j dq_v(j) m_j u_j(x), u_j(x) = w_j x (x - p_j) for a revolute joint (axis w_j
-  // through p_j) and w_j for a prismatic one, so over the link's sphere (centre c, radius r)
-  // the speed is at most |V| + |W| r, V = sum_j dq_j m_j u_j(c), W = sum_j dq_j m_j w_j over its
-  // revolute joints. Where the joints' motions partly cancel (an elbow bending back while the
-  // shoulder lifts) it is well below the sum of the arms. Along the motion, u_j turns with the
-  // frame of j's parent (at most Omega_j = sum of |dq| m over the revolute joints above j) and
-  // changes with the motion of x relative to that frame (at most T_j = sum over j and the joints
-  // below it of |dq| m times their lever), so the speed grows at most at
+  // point x is sum_j dq_v(j) m_j u_j(x) (m_j with its sign here), u_j(x) = cross(w_j, x - p_j)
+  // for a revolute joint (axis w_j through p_j) and w_j for a prismatic one, so over the link's
+  // sphere (centre c, radius r) the speed is at most |V| + |W| r, V = sum_j dq_j m_j u_j(c),
+  // W = sum_j dq_j m_j w_j over its revolute joints. Where the joints' motions partly cancel (an
+  // elbow bending back while the shoulder lifts) it is well below the sum of the arms. Along the
+  // motion, u_j turns with the frame of j's parent (at most Omega_j = sum of |dq| m over the
+  // revolute joints above j) and changes with the motion of x relative to that frame (at most T_j =
+  // sum over j and the joints below it of |dq| m times their lever), so the speed grows at most at
   // sum_j |dq_j| m_j (Omega_j lever_j + T_j) (speed growth; a prismatic joint's term has no T_j).
   // A pair's distance changes at most at the sum of its two links' speeds relative to their
   // common ancestor: the same sums over the pair's arms alone.
