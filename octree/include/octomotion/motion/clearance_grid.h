@@ -16,9 +16,10 @@ namespace octomotion {
 class ClearanceGrid {
  public:
   // The grid of `tree`'s cells at the finest level whose grid has at most `max_cells` cells (a
-  // byte each): 2^18 is 256 KiB, beside the BlackCellGrid's 256 KiB in L2 cache. A finer grid
-  // prunes a little more but no longer fits in the cache.
-  static constexpr std::size_t kDefaultMaxCells = std::size_t{1} << 18;
+  // byte each): 2^21 is 2 MiB. The certified motion validator takes its bounds as clearances,
+  // and cells of half the side leave fewer links to the exact distances and prove longer
+  // intervals; the queries along a path read a small part of it.
+  static constexpr std::size_t kDefaultMaxCells = std::size_t{1} << 21;
   // Distances are stored in quarters of a cell, up to 255 quarters (about 64 cells).
   static constexpr int kStepsPerCell = 4;
   explicit ClearanceGrid(const Octree& tree, std::size_t max_cells = kDefaultMaxCells);
