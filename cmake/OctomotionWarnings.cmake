@@ -4,6 +4,10 @@ function(octomotion_set_options target)
   target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow -Wnon-virtual-dtor)
   if(NOT "${ARGN}" STREQUAL "TEST")
     target_compile_options(${target} PRIVATE -Wconversion -Wno-sign-conversion)
+    # The libraries are position-independent (for the Python module); GCC then treats each
+    # exported function as replaceable at load time and inlines none of them into its callers,
+    # not even in its own file. Nothing here is meant to be replaced.
+    target_compile_options(${target} PRIVATE -fno-semantic-interposition)
   endif()
   if(OCTOMOTION_WERROR)
     target_compile_options(${target} PRIVATE -Werror)
