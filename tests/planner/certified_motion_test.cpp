@@ -110,6 +110,12 @@ void expectArmBoundHolds(const RobotModel& robot, int motions, std::uint64_t see
           const double posed = bound.linkRate(link, terms, arms) * s + 0.5 * growth * s * s;
           const double by_speed =
               bound.linkSpeed(link, terms, arms) * s + 0.5 * speed_growth * s * s;
+          // The validator reads the speed from the sums made once per state.
+          std::vector<double> sums(bound.armCount() * LinkMotionBound::kSumValues, 0.0);
+          bound.speedSums(link, terms, arms, sums.data());
+          const double speed = bound.linkSpeed(link, terms, arms);
+          EXPECT_NEAR(bound.linkSpeedFromSums(link, sums.data()), speed, 1e-12 * (1 + speed))
+              << robot.link(link).name << " motion " << m;
           const double travel = from_start ? most(0, part) : most(kSteps - part, kSteps);
           EXPECT_LE(travel, posed + 1e-9) << robot.link(link).name << " motion " << m << " part "
                                           << s << " from " << (from_start ? "start" : "end");

@@ -161,6 +161,13 @@ void expectPairBoundHolds(const RobotModel& robot, int motions, std::uint64_t se
               bound.pairRate(p, terms, arms) * s + 0.5 * terms.pair_growth[p] * s * s;
           const double by_speed =
               bound.pairSpeed(p, terms, arms) * s + 0.5 * terms.pair_speed_growth[p] * s * s;
+          // The validator reads the speed from both links' sums, made once per state.
+          std::vector<double> sums(bound.armCount() * LinkMotionBound::kSumValues, 0.0);
+          bound.speedSums(bound.pairs()[p].first, terms, arms, sums.data());
+          bound.speedSums(bound.pairs()[p].second, terms, arms, sums.data());
+          const double speed = bound.pairSpeed(p, terms, arms);
+          EXPECT_NEAR(bound.pairSpeedFromSums(p, sums.data()), speed, 1e-12 * (1 + speed))
+              << names << " motion " << m;
           const double travel = from_start ? most(0, part) : most(kSteps - part, kSteps);
           EXPECT_LE(travel, posed + 1e-9) << names << " motion " << m << " part " << s;
           EXPECT_LE(travel, by_speed + 1e-9)

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <stdexcept>
 #include <string>
 #include <variant>
 
@@ -249,12 +250,21 @@ LinkMotionBound::LinkMotionBound(const RobotModel& robot, bool keep_mesh_root_tr
     // Each movable joint on one link's path (its arms) and not on the other's.
     for (const auto& [link, other] :
          {pairs_[p], std::make_pair(pairs_[p].second, pairs_[p].first)}) {
+      std::size_t first = path_begin_[link + 1];
       for (std::size_t k = path_begin_[link]; k < path_begin_[link + 1]; ++k) {
         const PathJoint& j = path_joints_[k];
-        if (onPath(other, j.joint)) continue;
+        if (onPath(other, j.joint)) {
+          // The shared joints come first on both paths (speedFrom reads the rest as one sum).
+          if (first != path_begin_[link + 1]) {
+            throw std::logic_error("LinkMotionBound: a pair's joints are not the end of a path");
+          }
+          continue;
+        }
+        first = std::min(first, k);
         lever[j.variable] += j.multiplier * j.lever;
         pair_arms_.push_back(k);
       }
+      pair_suffix_.push_back(first);
     }
   }
   pair_begin_.push_back(pair_arms_.size());
@@ -390,6 +400,19 @@ double LinkMotionBound::speedOver(const EdgeTerms& terms, const double* arms, st
   }
   close();
   return speed;
+}
+
+void LinkMotionBound::speedSums(int link, const EdgeTerms& terms, const double* arms,
+                                double* sums) const {
+  Eigen::Vector3d V = Eigen::Vector3d::Zero(), W = Eigen::Vector3d::Zero();
+  const std::size_t begin = path_begin_[static_cast<std::size_t>(link)];
+  for (std::size_t k = path_begin_[static_cast<std::size_t>(link) + 1]; k-- > begin;) {
+    const double* arm = arms + k * kArmValues;
+    V += terms.signed_weight[k] * Eigen::Map<const Eigen::Vector3d>(arm + 1);
+    W += terms.signed_weight[k] * Eigen::Map<const Eigen::Vector3d>(arm + 4);
+    Eigen::Map<Eigen::Vector3d>(sums + k * kSumValues) = V;
+    Eigen::Map<Eigen::Vector3d>(sums + k * kSumValues + 3) = W;
+  }
 }
 
 double LinkMotionBound::linkSpeed(int link, const EdgeTerms& terms, const double* arms) const {

@@ -56,6 +56,9 @@ struct CertifiedMotionValidator::Scratch {
   LinkMotionBound::EdgeTerms terms;
   std::vector<double> link_rate, pair_rate, link_speed, pair_speed, arms;
   std::vector<char> armed;
+  // The state's speed sums (LinkMotionBound::speedSums) and, per link, whether they are made.
+  std::vector<double> speed_sums;
+  std::vector<char> summed;
   // Sets a slot's rates at the pose `posed`: of every active link and pair at an end (`in`
   // null; every link's arms computed, or already in `arms` when `posed` is null), else of those
   // not proven over the interval `in` it halves (all that its halves' descendants test).

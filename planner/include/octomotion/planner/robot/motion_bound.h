@@ -154,6 +154,20 @@ class LinkMotionBound {
   // The speed bound of link l (pair p) at a pose whose arms are given (with the speed growth).
   double linkSpeed(int link, const EdgeTerms& terms, const double* arms) const;
   double pairSpeed(std::size_t p, const EdgeTerms& terms, const double* arms) const;
+  // The same speeds from sums made once per pose: speedSums writes, for each arm k on link l's
+  // path, V's and W's sums over k and the arms after it (kSumValues values at sums +
+  // k * kSumValues). A pair's arms on a link are the end of that link's path (the joints above
+  // the two links' common ancestor move both), so its speed is read from two such sums.
+  static constexpr std::size_t kSumValues = 6;
+  void speedSums(int link, const EdgeTerms& terms, const double* arms, double* sums) const;
+  double linkSpeedFromSums(int link, const double* sums) const {
+    return speedFrom(link, path_begin_[static_cast<std::size_t>(link)], sums);
+  }
+  // Needs the sums of both links.
+  double pairSpeedFromSums(std::size_t p, const double* sums) const {
+    return speedFrom(pairs_[p].first, pair_suffix_[2 * p], sums) +
+           speedFrom(pairs_[p].second, pair_suffix_[2 * p + 1], sums);
+  }
 
  private:
   // A movable joint on a link's path from the root (root first), with its fixed lever.
@@ -175,6 +189,17 @@ class LinkMotionBound {
                    const std::size_t* indices) const;
   std::vector<std::size_t> path_begin_;              // linkCount() + 1 offsets
   std::vector<std::size_t> pair_arms_, pair_begin_;  // per pair: its arms (pairBound's joints)
+  // Per pair, the first of its arms on each link's path (the path's end when it has none).
+  std::vector<std::size_t> pair_suffix_;
+  // |V| + |W| r from the sums at arm `first` of link l's path (0 past its end).
+  double speedFrom(int link, std::size_t first, const double* sums) const {
+    if (first >= path_begin_[static_cast<std::size_t>(link) + 1]) return 0.0;
+    const double* s = sums + first * kSumValues;
+    return Eigen::Map<const Eigen::Vector3d>(s).norm() +
+           Eigen::Map<const Eigen::Vector3d>(s + 3).norm() *
+               spheres_[static_cast<std::size_t>(link)].radius +
+           1e-6;
+  }
   struct Spheres {
     Eigen::Vector3d center = Eigen::Vector3d::Zero();  // in the link frame
     double radius = 0;
