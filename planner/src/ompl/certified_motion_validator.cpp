@@ -266,6 +266,8 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
   // The screen's levels when it passed (every state at t = k / 2^levels, and s2, was found free
   // by the checker), -1 when it did not run.
   int screened_levels = -1;
+  // s2 was found free for every link and pair: by the screen, or before (a remembered end).
+  bool s2_in_full = false;
   auto screenedFree = [&](double t_edge) {
     if (screened_levels < 0 || t_edge == 0.0) return false;
     const double k = std::ldexp(t_edge, screened_levels);
@@ -321,10 +323,10 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
     if (!place(t_edge)) return false;
     BackendScratch& scratch = *t.backend;
     // Exact answers: a positive clearance (distance) is the link's (pair's) exact verdict, so
-    // the values come first and the collision check runs only for a half they leave open. Not at
-    // s1, whose full check also covers the links and pairs the edge does not move.
+    // the values come first and the collision check runs only for a half they leave open. At s1
+    // only when s2 was checked in full: the links and pairs the edge does not move are as there.
     const bool screened = screenedFree(t_edge);
-    const bool values_first = exact && t_edge != 0.0 && !screened;
+    const bool values_first = exact && (t_edge != 0.0 || s2_in_full) && !screened;
     if (screened || values_first) {
       const RobotData* kept = screened ? t.screenPose(t_edge, screened_levels) : nullptr;
       if (!kept || !backend.setPosed(*kept, scratch)) {
@@ -498,6 +500,7 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
         for (std::size_t l : t.active_links) known = known && !std::isnan(r.clearance[l]);
         for (std::size_t p : t.active_pairs) known = known && !std::isnan(r.distance[p]);
         if (known) {
+          if (t_edge == 1.0) s2_in_full = true;
           ++tally.remembered_ends;
           slot = newSlot();
           if (arm_count > 0) {
@@ -559,6 +562,7 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
         return false;
       }
       screened_levels = levels;
+      s2_in_full = true;  // screened, or remembered
     }
     // Pairs whose table bound is positive along the whole edge are proven free over it (after
     // the screen, which rejects most edges without them).

@@ -99,7 +99,9 @@ struct CertifiedMotionValidator::Scratch {
     return static_cast<std::size_t>(std::ldexp(t_edge, levels));
   }
   // Valid ends checked before (direct-mapped by a hash of the configuration): the values of the
-  // links and pairs active then, NaN for the others.
+  // links and pairs active then, NaN for the others. Each was found free for every link and
+  // pair: those its edge moved by their values or a check, the others at the edge's other end,
+  // which was checked in full (or remembered).
   struct Remembered {
     std::uint64_t validator = 0;
     std::vector<double> key, clearance, distance, arms;
