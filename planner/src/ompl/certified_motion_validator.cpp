@@ -582,8 +582,13 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
     std::size_t slot1 = 0, slot2 = 0;
     const bool s2_valid = evaluateEnd(1.0, slot2);
     if (!s2_valid && !want_last) return false;
-    // s1 is valid by OMPL's contract; one that is not rejects the edge.
-    if (!evaluateEnd(0.0, slot1)) return false;
+    // s1 is valid by OMPL's contract; one that is not rejects the edge. s2, remembered from its
+    // values alone, is then forgotten: the links the edge does not move were checked nowhere.
+    if (!evaluateEnd(0.0, slot1)) {
+      Scratch::Remembered& r2 = rememberedPlace(1.0);
+      if (!s2_in_full && r2.validator == serial_ && r2.key == t.key) r2.validator = 0;
+      return false;
+    }
     t.todo.clear();
     t.todo.push_back({0.0, 1.0, slot1, slot2, s2_valid, 0, 0});
     // Breadth first (midpoints first, coarse to fine) finds a collision with few checks; depth
