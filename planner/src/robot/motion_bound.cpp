@@ -383,7 +383,7 @@ double LinkMotionBound::speedOver(const EdgeTerms& terms, const double* arms, st
   int link_path = -1;
   auto close = [&] {
     if (link_path < 0) return;
-    speed += V.norm() + W.norm() * spheres_[static_cast<std::size_t>(link_path)].radius + 1e-6;
+    speed += speedOf(link_path, V, W);
     V.setZero();
     W.setZero();
   };

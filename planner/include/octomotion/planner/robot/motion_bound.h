@@ -191,14 +191,17 @@ class LinkMotionBound {
   std::vector<std::size_t> pair_arms_, pair_begin_;  // per pair: its arms (pairBound's joints)
   // Per pair, the first of its arms on each link's path (the path's end when it has none).
   std::vector<std::size_t> pair_suffix_;
-  // |V| + |W| r from the sums at arm `first` of link l's path (0 past its end).
+  // Link l's speed bound |V| + |W| r for the sums V and W over some of its arms; a micrometre
+  // covers rounding.
+  double speedOf(int link, const Eigen::Vector3d& V, const Eigen::Vector3d& W) const {
+    return V.norm() + W.norm() * spheres_[static_cast<std::size_t>(link)].radius + 1e-6;
+  }
+  // speedOf from the sums at arm `first` of link l's path (0 past its end).
   double speedFrom(int link, std::size_t first, const double* sums) const {
     if (first >= path_begin_[static_cast<std::size_t>(link) + 1]) return 0.0;
     const double* s = sums + first * kSumValues;
-    return Eigen::Map<const Eigen::Vector3d>(s).norm() +
-           Eigen::Map<const Eigen::Vector3d>(s + 3).norm() *
-               spheres_[static_cast<std::size_t>(link)].radius +
-           1e-6;
+    return speedOf(link, Eigen::Map<const Eigen::Vector3d>(s),
+                   Eigen::Map<const Eigen::Vector3d>(s + 3));
   }
   struct Spheres {
     Eigen::Vector3d center = Eigen::Vector3d::Zero();  // in the link frame
