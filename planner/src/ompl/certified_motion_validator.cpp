@@ -495,7 +495,7 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
     };
     auto evaluateEnd = [&](double t_edge, std::size_t& slot) {
       Scratch::Remembered& r = rememberedPlace(t_edge);
-      if (r.validator == serial_ && r.key == t.key) {
+      if (r.holds(serial_, t.key)) {
         bool known = true;
         for (std::size_t l : t.active_links) known = known && !std::isnan(r.clearance[l]);
         for (std::size_t p : t.active_pairs) known = known && !std::isnan(r.distance[p]);
@@ -552,7 +552,7 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
       if (t.screen_poses.size() < states) t.screen_poses.resize(states, robot.makeData());
       t.screen_posed.assign(states, 0);
       const Scratch::Remembered& r2 = rememberedPlace(1.0);
-      bool collides = !(r2.validator == serial_ && r2.key == t.key) && screenCollides(1.0);
+      bool collides = !r2.holds(serial_, t.key) && screenCollides(1.0);
       for (int level = 1; level <= levels && !collides; ++level) {
         const double step = std::ldexp(1.0, -level);
         for (double m = step; m < 1.0 && !collides; m += 2 * step) collides = screenCollides(m);
@@ -586,7 +586,7 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
     // values alone, is then forgotten: the links the edge does not move were checked nowhere.
     if (!evaluateEnd(0.0, slot1)) {
       Scratch::Remembered& r2 = rememberedPlace(1.0);
-      if (!s2_in_full && r2.validator == serial_ && r2.key == t.key) r2.validator = 0;
+      if (!s2_in_full && r2.holds(serial_, t.key)) r2.validator = 0;
       return false;
     }
     t.todo.clear();

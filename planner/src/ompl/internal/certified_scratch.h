@@ -105,6 +105,10 @@ struct CertifiedMotionValidator::Scratch {
   struct Remembered {
     std::uint64_t validator = 0;
     std::vector<double> key, clearance, distance, arms;
+    // It holds the end of this key, remembered by this validator.
+    bool holds(std::uint64_t by, const std::vector<double>& end_key) const {
+      return validator == by && key == end_key;
+    }
   };
   static constexpr std::size_t kRemembered = 64;
   std::array<Remembered, kRemembered> remembered;
