@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "octomotion/error.h"
+#include "octomotion/motion/convex_hull.h"
 
 namespace octomotion {
 
@@ -302,10 +303,10 @@ bool convexApart(const ConvexPoints& a, const ConvexPoints& b, const Eigen::Isom
     Eigen::Vector3d w = a.point(ia) - (R_AB * b.point(ib) + p_AB);
     double vw = v.dot(w);
     const double v2 = v.squaredNorm();
-    if (vw > 0 && vw * vw > margin * margin * v2 && (a.hasEdges() || b.hasEdges())) {
+    if (vw > 0 && vw * vw > margin * margin * v2 && !(a.exactClimb() && b.exactClimb())) {
       // A climb may stop short of the support: the answer rests on every point.
-      ia = a.supportIndex(-v);
-      ib = b.supportIndex(R_BA * v);
+      ia = a.exactSupport(-v);
+      ib = b.exactSupport(R_BA * v);
       w = a.point(ia) - (R_AB * b.point(ib) + p_AB);
       vw = v.dot(w);
     }
@@ -325,12 +326,12 @@ bool convexApart(const ConvexPoints& a, const ConvexPoints& b, const Eigen::Isom
 namespace {
 
 // The gap between a and b along v (not 0) over every point: min over a of u . a less max over
-// b of u . (X_AB b), u = v / |v|, less the radii.
+// b of u . (X_AB b), u = v / |v|, less the radii (the supports found exactly: exactSupport).
 double gapOverEveryPoint(const ConvexPoints& a, const ConvexPoints& b, const Eigen::Matrix3d& R_AB,
                          const Eigen::Vector3d& p_AB, const Eigen::Vector3d& v) {
   const Eigen::Vector3d u = v.normalized();
   const Eigen::Vector3d w =
-      a.point(a.supportIndex(-u)) - (R_AB * b.point(b.supportIndex(R_AB.transpose() * u)) + p_AB);
+      a.point(a.exactSupport(-u)) - (R_AB * b.point(b.exactSupport(R_AB.transpose() * u)) + p_AB);
   return u.dot(w) - a.radius() - b.radius();
 }
 
@@ -360,20 +361,20 @@ double convexDistanceBelow(const ConvexPoints& a, const ConvexPoints& b,
   // its direction.
   Eigen::Vector3d last = v, best = v;
   double bound = -std::numeric_limits<double>::infinity();
-  bool exact_supports = !a.hasEdges() && !b.hasEdges();
+  bool exact_supports = a.exactClimb() && b.exactClimb();
   Simplex s;
   for (int iteration = 0; iteration < kMaxIterations; ++iteration) {
     last = v;
-    std::size_t ia = exact_supports ? a.supportIndex(-v) : a.climbSupport(-v);
-    std::size_t ib = exact_supports ? b.supportIndex(R_BA * v) : b.climbSupport(R_BA * v);
+    std::size_t ia = exact_supports ? a.exactSupport(-v) : a.climbSupport(-v);
+    std::size_t ib = exact_supports ? b.exactSupport(R_BA * v) : b.climbSupport(R_BA * v);
     Eigen::Vector3d w = a.point(ia) - (R_AB * b.point(ib) + p_AB);
     double vw = v.dot(w);
     const double len = v.norm();
     if (vw / len - radii >= cap && !exact_supports) {
       // A climb may stop short of the support: from here on every point is searched.
       exact_supports = true;
-      ia = a.supportIndex(-v);
-      ib = b.supportIndex(R_BA * v);
+      ia = a.exactSupport(-v);
+      ib = b.exactSupport(R_BA * v);
       w = a.point(ia) - (R_AB * b.point(ib) + p_AB);
       vw = v.dot(w);
     }
@@ -394,6 +395,54 @@ double convexDistanceBelow(const ConvexPoints& a, const ConvexPoints& b,
   }
   if (direction_A != nullptr) *direction_A = best;
   return std::max(0.0, bound);
+}
+
+ConvexPoints ConvexPoints::hullOf(const std::vector<Eigen::Vector3d>& points, double radius) {
+  const std::optional<std::vector<std::array<std::uint32_t, 3>>> triangles =
+      convexHullTriangles(points);
+  if (!triangles) return ConvexPoints(points, radius);
+  // The surface's vertices, renumbered; the other points lie inside but for rounding.
+  std::vector<std::uint32_t> kept_index(points.size(), std::numeric_limits<std::uint32_t>::max());
+  std::vector<Eigen::Vector3d> kept;
+  std::vector<std::array<std::uint32_t, 3>> surface;
+  for (const auto& t : *triangles) {
+    std::array<std::uint32_t, 3> renumbered{};
+    for (std::size_t k = 0; k < 3; ++k) {
+      std::uint32_t& i = kept_index[t[k]];
+      if (i == std::numeric_limits<std::uint32_t>::max()) {
+        i = static_cast<std::uint32_t>(kept.size());
+        kept.push_back(points[t[k]]);
+      }
+      renumbered[k] = i;
+    }
+    surface.push_back(renumbered);
+  }
+  // A dropped point outside a face's plane (by rounding) is outside the hull by at most its
+  // distance to the surface, which the radius takes up: the grown hull still holds it.
+  double outside = 0;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (kept_index[i] != std::numeric_limits<std::uint32_t>::max()) continue;
+    const Eigen::Vector3d& p = points[i];
+    bool out = false;
+    for (const auto& t : surface) {
+      const Eigen::Vector3d n = (kept[t[1]] - kept[t[0]]).cross(kept[t[2]] - kept[t[0]]);
+      out = out || n.dot(p - kept[t[0]]) > 0;
+    }
+    if (!out) continue;
+    double nearest = std::numeric_limits<double>::infinity();
+    Simplex feature;
+    for (const auto& t : surface) {
+      const Eigen::Vector3d q =
+          closestOnTriangle(kept[t[0]] - p, kept[t[1]] - p, kept[t[2]] - p, feature);
+      nearest = std::min(nearest, q.norm());
+    }
+    outside = std::max(outside, nearest);
+  }
+  // Twice the distance: far above the rounding of the distance and of the sum.
+  const double grown = radius + 2 * outside;
+  ConvexPoints hull(kept, surface, grown);
+  hull.exact_climb_ = true;
+  return hull;
 }
 
 ConvexPoints boxHull(const Eigen::Vector3d& half_extents) {

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <map>
+#include <utility>
 #include <variant>
 
 #include <fcl/geometry/bvh/BVH_model.h>
@@ -78,8 +79,12 @@ std::vector<ConvexPoints> linkHulls(const fcl_internal::RobotGeometry& robot,
       all = addElement(*element.collisionGeometry(), collision[k].X_LE, hull);
     }
     if (!all || hull.points_L.empty()) continue;
-    // Edges help the support search only when they connect every point (one mesh).
-    if (collision.size() == 1 && !hull.triangles.empty()) {
+    // The hull's own edges make the support search a climb (ConvexPoints::hullOf); without a
+    // hull, a mesh's edges still guide it when they connect every point (one mesh).
+    ConvexPoints exact = ConvexPoints::hullOf(hull.points_L);
+    if (exact.exactClimb() && exact.hasEdges()) {
+      hulls[l] = std::move(exact);
+    } else if (collision.size() == 1 && !hull.triangles.empty()) {
       hulls[l] = ConvexPoints(hull.points_L, hull.triangles);
     } else {
       hulls[l] = ConvexPoints(hull.points_L);
@@ -109,6 +114,8 @@ ConvexPoints objectHull(const EnvironmentObject& spec, const TriangleMesh& mesh)
     for (const Eigen::Vector3d& v : mesh.vertices) points_W.push_back(spec.X_WO * v);
   }
   if (points_W.empty() || !(radius >= 0) || !std::isfinite(radius)) return {};
+  // A mesh's vertices: the hull's boundary makes the support search a climb.
+  if (spec.kind == EnvironmentObject::Kind::kMesh) return ConvexPoints::hullOf(points_W, radius);
   return ConvexPoints(points_W, radius);
 }
 

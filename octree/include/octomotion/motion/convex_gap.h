@@ -43,6 +43,18 @@ class ConvexPoints {
   // edges.
   std::size_t climbSupport(const Eigen::Vector3d& d) const;
   bool hasEdges() const { return !neighbours_.empty(); }
+  // The hull of `points` grown by `radius`, kept as its boundary's vertices and edges
+  // (convexHullTriangles): a climb along them then finds the support exactly (a closed convex
+  // surface), with no search over every point (exactClimb). Points inside are dropped; one that
+  // rounding leaves outside the surface grows the radius by its distance to it. Without a hull
+  // (flat sets, more than kMaxHullPoints) it is ConvexPoints(points, radius).
+  static ConvexPoints hullOf(const std::vector<Eigen::Vector3d>& points, double radius = 0);
+  // Whether climbSupport finds the support of every point (a hull, or no edges to climb).
+  bool exactClimb() const { return exact_climb_ || neighbours_.empty(); }
+  // A support point found exactly: by climbing when that is exact, else over every point.
+  std::size_t exactSupport(const Eigen::Vector3d& d) const {
+    return exact_climb_ ? climbSupport(d) : supportIndex(d);
+  }
   const Eigen::Vector3d& centroid() const { return centroid_; }
   // The largest distance from the centroid to a point: the grown hull lies in the ball of
   // radius reach() + radius() around the centroid.
@@ -65,6 +77,7 @@ class ConvexPoints {
   std::array<std::uint32_t, 27> start_{};
   std::size_t climbStart(const Eigen::Vector3d& d) const;
   double radius_ = 0;
+  bool exact_climb_ = false;
   Eigen::Vector3d centroid_ = Eigen::Vector3d::Zero();
   double reach_ = 0;
 };
