@@ -229,6 +229,23 @@ TEST(ConvexGap, SupportIsTheHighestOfEveryPoint) {
   }
 }
 
+TEST(ConvexGap, BoxSupportIsTheHighestCorner) {
+  // boxHull finds its support from the direction's signs; each corner against all eight, with
+  // zero extents and zero components among the cases.
+  std::mt19937_64 rng(0x50b0);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int k = 0; k < 2000; ++k) {
+    Eigen::Vector3d half(std::abs(u(rng)), std::abs(u(rng)), std::abs(u(rng)));
+    if (k % 7 == 0) half[k % 3] = 0;
+    Eigen::Vector3d d(u(rng), u(rng), u(rng));
+    if (k % 5 == 0) d[(k / 5) % 3] = 0;
+    const ConvexPoints box = boxHull(half);
+    double highest = -std::numeric_limits<double>::infinity();
+    for (const Eigen::Vector3d& c : boxCorners(half)) highest = std::max(highest, d.dot(c));
+    EXPECT_EQ(d.dot(box.point(box.supportIndex(d))), highest);
+  }
+}
+
 // Edges only guide the search: on non-convex meshes, where a climb can stop short, every
 // "apart" still has its separating direction, and convex meshes across a slab are found apart.
 TEST(ConvexGap, EdgesChangeNoAnswer) {

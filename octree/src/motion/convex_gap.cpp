@@ -137,6 +137,12 @@ std::size_t ConvexPoints::supportIndexIn(const Eigen::Vector3d& d, std::size_t b
 }
 
 std::size_t ConvexPoints::supportIndex(const Eigen::Vector3d& d) const {
+  if (box_corners_) {
+    // The corner on the side of each positive component: the highest of the eight (either
+    // corner of an axis along which d is 0).
+    return static_cast<std::size_t>((d.x() > 0 ? 1 : 0) | (d.y() > 0 ? 2 : 0) |
+                                    (d.z() > 0 ? 4 : 0));
+  }
   double value = -std::numeric_limits<double>::infinity();
   if (clusters_.empty()) return supportIndexIn(d, 0, x_.size(), value);
   // The cluster whose centre is highest first: its best point makes most bounds fall short.
@@ -450,7 +456,9 @@ ConvexPoints boxHull(const Eigen::Vector3d& half_extents) {
     throw InvalidArgument("boxHull: the half extents must be finite and >= 0");
   }
   const std::array<Eigen::Vector3d, 8> corners = boxCorners(half_extents);
-  return ConvexPoints(std::vector<Eigen::Vector3d>(corners.begin(), corners.end()));
+  ConvexPoints hull(std::vector<Eigen::Vector3d>(corners.begin(), corners.end()));
+  hull.box_corners_ = true;
+  return hull;
 }
 
 std::array<Eigen::Vector3d, 8> boxCorners(const Eigen::Vector3d& half_extents) {
@@ -480,7 +488,7 @@ ConvexPoints cylinderHull(double radius, double length, int sides) {
       points.emplace_back(corner * std::cos(angle), corner * std::sin(angle), z);
     }
   }
-  return ConvexPoints(points);
+  return ConvexPoints::hullOf(points);  // a climb around the prism (flat ones: every point)
 }
 
 }  // namespace octomotion

@@ -78,6 +78,9 @@ class ConvexPoints {
   std::size_t climbStart(const Eigen::Vector3d& d) const;
   double radius_ = 0;
   bool exact_climb_ = false;
+  // boxHull's corners, in boxCorners' order: the support's index is the signs of d.
+  bool box_corners_ = false;
+  friend ConvexPoints boxHull(const Eigen::Vector3d& half_extents);
   Eigen::Vector3d centroid_ = Eigen::Vector3d::Zero();
   double reach_ = 0;
 };
