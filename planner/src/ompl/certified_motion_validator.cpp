@@ -222,7 +222,6 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
   // Fixed-base robots: bounds from the poses at an interval's ends (LinkMotionBound's posed
   // bounds), tighter than the edge's where the arm is not stretched.
   const std::size_t arm_count = direct ? bound_->armCount() : 0;
-  if (direct) bound_->edgeTerms(t.dq.data(), t.terms);
   t.arms.resize(arm_count * LinkMotionBound::kArmValues);
   t.link_rate.clear();
   t.pair_rate.clear();
@@ -564,8 +563,9 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
       screened_levels = levels;
       s2_in_full = true;  // screened, or remembered
     }
-    // Pairs whose table bound is positive along the whole edge are proven free over it (after
-    // the screen, which rejects most edges without them).
+    // After the screen, which rejects most edges without them: the posed bounds' terms, and the
+    // pairs whose table bound is positive along the whole edge, proven free over it.
+    if (direct) bound_->edgeTerms(t.dq.data(), t.terms);
     if (table) {
       std::size_t kept = 0;
       for (std::size_t p : t.active_pairs) {
