@@ -204,7 +204,7 @@ RefineData::RefineData(const RobotModel& model, const EnvironmentGeometry& envir
           part.box_W = part.shapes.back().getAABB();
           std::vector<Eigen::Vector3d> points_W;
           for (const Eigen::Vector3d& v : piece.vertices) points_W.push_back(item.spec.X_WO * v);
-          part.hull_W = ConvexPoints(points_W);
+          part.hull_W = ConvexPoints::hullOf(points_W);
           part.hull_O = part.hull_W;
           objects.push_back(std::move(part));
         }
@@ -252,6 +252,7 @@ RefineScratch& refineScratch(const RefineData& data, const RobotModel& model, st
     scratch->posed_at.assign(data.robot->elementCount(), 0);
     scratch->link_object_directions.assign(data.link_elements.size() * data.objects.size(),
                                            Eigen::Vector3d::Zero());
+    scratch->link_object_apart = scratch->link_object_directions;
     h.reset(std::move(scratch));
   }
   RefineScratch& r = *h.get();
@@ -362,8 +363,14 @@ bool environmentOctreePass(const CollisionModelParts& parts, const RefineData& d
   r.uncertain_links.clear();
   for (const EnvironmentLinkTest& t : links.environment_tests) {
     const Eigen::Isometry3d& X_WL = scratch.robot.linkPose(t.link);
-    if (sphereMeetsBox(t, X_WL, environment.box_W) &&
-        environment.linkHits(t, links.links[t.slot].voxels, X_WL, path, scratch.fused)) {
+    // The answer is FCL's against the objects: a link whose hull is apart from theirs is free,
+    // whatever its voxels meet.
+    if (!sphereMeetsBox(t, X_WL, environment.box_W)) continue;
+    if (linkApartFromObjects(data, r, scratch.robot, t.link)) {
+      ++r.counts.hull_apart_links;
+      continue;
+    }
+    if (environment.linkHits(t, links.links[t.slot].voxels, X_WL, path, scratch.fused)) {
       if (certainLinkContact(data, r, scratch.robot, t.link)) {
         ++r.counts.certain_contacts;
         return true;

@@ -119,6 +119,33 @@ ConvexPoints objectHull(const EnvironmentObject& spec, const TriangleMesh& mesh)
   return ConvexPoints(points_W, radius);
 }
 
+bool linkApartFromObjects(const RefineData& data, RefineScratch& r, const RobotData& robot,
+                          int link) {
+  const ConvexPoints& hull_L = data.link_hulls_L[static_cast<std::size_t>(link)];
+  if (hull_L.empty()) return false;
+  const Eigen::Isometry3d& X_WL = robot.linkPose(link);
+  // The link's hull lies in this ball; an object's shapes lie in its box.
+  const Eigen::Vector3d centre_W = X_WL * hull_L.centroid();
+  const double reach = hull_L.reach() + hull_L.radius() + kHullGap;
+  const std::size_t objects = data.objects.size();
+  for (std::size_t i = 0; i < objects; ++i) {
+    const RefineObject& object = data.objects[i];
+    if (object.shapes.empty()) continue;
+    const Eigen::Vector3d outside =
+        (object.box_W.min_ - centre_W).cwiseMax(centre_W - object.box_W.max_).cwiseMax(0.0);
+    if (outside.squaredNorm() > reach * reach) continue;
+    // A primitive's hull in its own frame (a box's support in closed form), else in W.
+    const bool own_frame = !object.hull_O.empty();
+    const ConvexPoints& hull = own_frame ? object.hull_O : object.hull_W;
+    if (hull.empty()) return false;
+    Eigen::Vector3d& direction = r.link_object_apart[static_cast<std::size_t>(link) * objects + i];
+    if (!convexApart(hull, hull_L, own_frame ? object.X_OW * X_WL : X_WL, kHullGap, &direction)) {
+      return false;
+    }
+  }
+  return true;
+}
+
 bool linkApartFromObject(const RefineData& data, const RobotData& robot, int link,
                          const RefineObject& object) {
   const ConvexPoints& hull_L = data.link_hulls_L[static_cast<std::size_t>(link)];

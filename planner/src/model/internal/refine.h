@@ -171,6 +171,8 @@ struct RefineScratch {
   // one costs a support pair, never the bound. Sized when the scratch is made: a model's refine
   // data never changes (world updates refuse exact refine).
   std::vector<Eigen::Vector3d> link_object_directions;
+  // The same for linkApartFromObjects' separating directions (kept apart from the distances').
+  std::vector<Eigen::Vector3d> link_object_apart;
   RefineCounts counts;
   // Distances for the certified motion validator (refine_clearance.cpp): link-object and
   // link-link distances answered by their hulls' bound, and FCL distance calls (one per element
@@ -203,6 +205,12 @@ bool refineUncertainPairsHit(const RefineData& data, RefineScratch& r, const Rob
 std::vector<ConvexPoints> linkHulls(const fcl_internal::RobotGeometry& robot,
                                     const RobotModel& model,
                                     const std::vector<std::vector<std::size_t>>& link_elements);
+// The hull of `link` is kHullGap apart from the hull of every object that could reach it (its
+// box within the link hull's ball) at the link's pose in `robot`: FCL finds no contact between
+// the link and the environment, so its voxels need not be looked at. False when the link or
+// such an object has no hull (voxel objects). Directions that separated them are kept in `r`.
+bool linkApartFromObjects(const RefineData& data, RefineScratch& r, const RobotData& robot,
+                          int link);
 // The hull of `link` is kHullGap apart from `object`'s (both non-empty) at the link's pose in
 // `robot`, so FCL finds no contact between the link's elements and the object.
 bool linkApartFromObject(const RefineData& data, const RobotData& robot, int link,

@@ -315,6 +315,9 @@ struct RefineCounts {
   // Link-object pairs of links FCL decided, cleared by the link's hull apart from the object's
   // (a box's corners, a capsule about a cylinder, a mesh's vertices) before FCL.
   std::uint64_t hull_apart_objects = 0;
+  // Links cleared of the environment by their hull apart from every object's hull that could
+  // reach them, before their voxels (skipped for voxel objects, which have no hull).
+  std::uint64_t hull_apart_links = 0;
 };
 
 // RefineMode::kExact: the posed FCL objects of one thread, opaque here, made by the first
