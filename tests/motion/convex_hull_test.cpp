@@ -2,8 +2,8 @@
 // check and holds every point; every triangle of it is a face of the hull (no point beyond its
 // plane); a climb along its edges finds the highest of all the points, on random clouds,
 // clouds with many points on a few planes (box corners and face grids), duplicates and nearly
-// flat sets; the check refuses open, doubled and non-convex surfaces; sets with no volume get
-// no hull, and so do sets of more than kMaxHullPoints.
+// flat sets, and far from the origin; the check refuses open, doubled and non-convex surfaces; sets
+// with no volume get no hull, and so do sets of more than kMaxHullPoints.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -29,12 +29,12 @@ double highestAlong(const std::vector<Eigen::Vector3d>& points, const Eigen::Vec
 }
 
 // Clouds of several kinds, fixed by the seed.
-std::vector<Eigen::Vector3d> cloud(std::mt19937_64& rng, int kind) {
+std::vector<Eigen::Vector3d> cloud(std::mt19937_64& rng, int kind, double away = 3) {
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   std::normal_distribution<double> g(0.0, 1.0);
   std::vector<Eigen::Vector3d> points;
   const int count = 4 + static_cast<int>(300 * (u(rng) + 1) / 2);
-  const Eigen::Vector3d offset(3 * u(rng), 3 * u(rng), 3 * u(rng));
+  const Eigen::Vector3d offset(away * u(rng), away * u(rng), away * u(rng));
   const double scale = std::pow(10.0, 2 * u(rng));  // 0.01 to 100
   for (int i = 0; i < count; ++i) {
     Eigen::Vector3d p;
@@ -109,6 +109,23 @@ TEST(ConvexHull, ClimbFindsTheHighestOfEveryPoint) {
     }
   }
   EXPECT_GE(exact, 120);
+}
+
+TEST(ConvexHull, FarFromTheOriginTheClimbStillHoldsEveryPoint) {
+  // Small sets a hundred kilometres out: rounding in the planes is then far above the sets'
+  // own scale. A hull may not be made; one that is must still hold every point.
+  std::mt19937_64 rng(0x4015);
+  std::normal_distribution<double> g(0.0, 1.0);
+  for (int set = 0; set < 80; ++set) {
+    const std::vector<Eigen::Vector3d> points = cloud(rng, set % 4, 1e5);
+    const ConvexPoints hull = ConvexPoints::hullOf(points);
+    for (int k = 0; k < 100; ++k) {
+      const Eigen::Vector3d d(g(rng), g(rng), g(rng));
+      const double support = d.dot(hull.point(hull.exactSupport(d))) + d.norm() * hull.radius();
+      const double highest = highestAlong(points, d);
+      EXPECT_GE(support, highest - 1e-9 * d.norm()) << "set " << set;
+    }
+  }
 }
 
 TEST(ConvexHull, HullDistancesMatchThePointSets) {
