@@ -425,14 +425,17 @@ ConvexPoints ConvexPoints::hullOf(const std::vector<Eigen::Vector3d>& points, do
   }
   // A dropped point outside a face's plane (by rounding) is outside the hull by at most its
   // distance to the surface, which the radius takes up: the grown hull still holds it.
+  std::vector<Eigen::Vector3d> normals;  // not unit: only their signs are read
+  for (const auto& t : surface) {
+    normals.push_back((kept[t[1]] - kept[t[0]]).cross(kept[t[2]] - kept[t[0]]));
+  }
   double outside = 0;
   for (std::size_t i = 0; i < points.size(); ++i) {
     if (kept_index[i] != std::numeric_limits<std::uint32_t>::max()) continue;
     const Eigen::Vector3d& p = points[i];
     bool out = false;
-    for (const auto& t : surface) {
-      const Eigen::Vector3d n = (kept[t[1]] - kept[t[0]]).cross(kept[t[2]] - kept[t[0]]);
-      out = out || n.dot(p - kept[t[0]]) > 0;
+    for (std::size_t f = 0; f < surface.size() && !out; ++f) {
+      out = normals[f].dot(p - kept[surface[f][0]]) > 0;
     }
     if (!out) continue;
     double nearest = std::numeric_limits<double>::infinity();

@@ -44,10 +44,6 @@ double hullTrusted(const WorldGrid& grid, const RefineObject& object) {
 // (rounded shapes converge slowly) cost more.
 constexpr double kHullTolerance = 1e-2;
 
-double distanceToBox(const fcl::AABBd& box, const Eigen::Vector3d& p) {
-  return (box.min_ - p).cwiseMax(p - box.max_).cwiseMax(0.0).norm();
-}
-
 // A lower bound on the distance from `link`'s elements to the environment's objects, or `cap`
 // when at least `cap`: per object, the hulls' bound when it reaches the best so far or is above
 // the object's hullTrusted, else FCL's distance.

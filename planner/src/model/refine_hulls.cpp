@@ -82,7 +82,7 @@ std::vector<ConvexPoints> linkHulls(const fcl_internal::RobotGeometry& robot,
     // The hull's own edges make the support search a climb (ConvexPoints::hullOf); without a
     // hull, a mesh's edges still guide it when they connect every point (one mesh).
     ConvexPoints exact = ConvexPoints::hullOf(hull.points_L);
-    if (exact.exactClimb() && exact.hasEdges()) {
+    if (exact.hasEdges()) {  // a hull (without one, hullOf keeps the points alone)
       hulls[l] = std::move(exact);
     } else if (collision.size() == 1 && !hull.triangles.empty()) {
       hulls[l] = ConvexPoints(hull.points_L, hull.triangles);
@@ -130,10 +130,7 @@ bool linkApartFromObjects(const RefineData& data, RefineScratch& r, const RobotD
   const std::size_t objects = data.objects.size();
   for (std::size_t i = 0; i < objects; ++i) {
     const RefineObject& object = data.objects[i];
-    if (object.shapes.empty()) continue;
-    const Eigen::Vector3d outside =
-        (object.box_W.min_ - centre_W).cwiseMax(centre_W - object.box_W.max_).cwiseMax(0.0);
-    if (outside.squaredNorm() > reach * reach) continue;
+    if (object.shapes.empty() || distanceToBox(object.box_W, centre_W) > reach) continue;
     // A primitive's hull in its own frame (a box's support in closed form), else in W.
     const bool own_frame = !object.hull_O.empty();
     const ConvexPoints& hull = own_frame ? object.hull_O : object.hull_W;

@@ -127,6 +127,11 @@ struct RefineData {
 // far below any gap that matters.
 inline constexpr double kHullGap = 1e-5;
 
+// The distance from p to the box (0 inside it).
+inline double distanceToBox(const fcl::AABBd& box, const Eigen::Vector3d& p) {
+  return (box.min_ - p).cwiseMax(p - box.max_).cwiseMax(0.0).norm();
+}
+
 // Which of two outcomes a thread saw lately: the counts halve when their sum reaches kWindow,
 // so they follow the states it checks now (a planner's nearby states). Per self pair, its exact
 // tests' verdicts (first: hulls apart, second: certain contact): a pair mostly in contact tries
