@@ -46,8 +46,8 @@ class ConvexPoints {
   // The hull of `points` grown by `radius`, kept as its boundary's vertices and edges
   // (convexHullTriangles): a climb along them then finds the support exactly (a closed convex
   // surface), with no search over every point (exactClimb). Points inside are dropped; one that
-  // rounding leaves outside the surface grows the radius by its distance to it. Without a hull
-  // (flat sets, more than kMaxHullPoints) it is ConvexPoints(points, radius).
+  // rounding leaves outside the surface grows the radius by twice its distance to it. Without a
+  // hull (flat sets, more than kMaxHullPoints) it is ConvexPoints(points, radius).
   static ConvexPoints hullOf(const std::vector<Eigen::Vector3d>& points, double radius = 0);
   // Whether climbSupport finds the support of every point (a hull, or no edges to climb).
   bool exactClimb() const { return exact_climb_ || neighbours_.empty(); }
