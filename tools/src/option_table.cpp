@@ -102,7 +102,7 @@ const OptionTable<SceneOverrides>& sceneOptions() {
        }},
       {"--range", "DISTANCE",
        "how far one planner step reaches, in the state space's distance\n(radians over the "
-       "joints for an arm; overrides problem.range;\ndefault: a tenth of an arm's joint-space "
+       "joints for an arm; overrides problem.range;\ndefault: 3/40 of an arm's joint-space "
        "extent, the planner's own\nfor a rigid body; docs/planner.md)",
        [](const std::string& flag, const std::string& v, SceneOverrides& o) {
          o.range = positive(flag, v);

@@ -198,7 +198,7 @@ void setPlannerRange(ompl::base::Planner& planner, std::optional<double> range);
 // An edge's certified check costs more the farther its links travel, and long edges rarely
 // survive clutter (docs/planner.md, "The planner's range"). Free-flying bodies, and scenes
 // with the ompl-default motion validator, keep OMPL's.
-inline constexpr double kArmRangeShare = 0.1;
+inline constexpr double kArmRangeShare = 0.075;
 
 struct PlanResult {
   bool solved = false;  // an exact solution was found
