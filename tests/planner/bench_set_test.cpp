@@ -150,11 +150,14 @@ TEST(BenchSet, EveryProblemOncePerCheckerAndSolvedPathsFreeUnderFcl) {
   const std::vector<std::string> header = csvFields(csv.front());
   std::map<std::string, std::size_t> column;
   for (std::size_t i = 0; i < header.size(); ++i) column[header[i]] = i;
-  for (const char* c : {"set", "problem", "checker", "solved", "fcl_recheck_states",
-                        "fcl_recheck_colliding", "state_checks", "motion_checks", "error"}) {
+  for (const char* c :
+       {"set", "problem", "checker", "solved", "fcl_recheck_states", "fcl_recheck_colliding",
+        "state_checks", "motion_checks", "seed", "error"}) {
     ASSERT_TRUE(column.count(c)) << c;
   }
   std::map<std::string, int> seen;  // "set/problem checker"
+  // --seed gives each problem its own seed, the same for each of its checkers.
+  std::map<std::string, std::set<std::string>> seeds;  // per problem
   std::size_t solved = 0;
   for (std::size_t i = 1; i < csv.size(); ++i) {
     const std::vector<std::string> f = csvFields(csv[i]);
@@ -162,6 +165,8 @@ TEST(BenchSet, EveryProblemOncePerCheckerAndSolvedPathsFreeUnderFcl) {
     const std::string problem = f[column["set"]] + "/" + f[column["problem"]];
     EXPECT_TRUE(expected.count(problem)) << problem;
     ++seen[problem + " " + f[column["checker"]]];
+    EXPECT_NE(f[column["seed"]], "0") << csv[i];
+    seeds[problem].insert(f[column["seed"]]);
     EXPECT_EQ(f[column["error"]], "") << csv[i];
     if (f[column["solved"]] != "1") continue;
     ++solved;
@@ -172,6 +177,12 @@ TEST(BenchSet, EveryProblemOncePerCheckerAndSolvedPathsFreeUnderFcl) {
   }
   EXPECT_EQ(seen.size(), 2 * expected.size());
   for (const auto& [key, count] : seen) EXPECT_EQ(count, 1) << key;
+  std::set<std::string> distinct;
+  for (const auto& [problem, values] : seeds) {
+    EXPECT_EQ(values.size(), 1u) << problem;
+    distinct.insert(values.begin(), values.end());
+  }
+  EXPECT_EQ(distinct.size(), seeds.size());
   EXPECT_GT(solved, 0u);
 
   // One log per set and checker, each with a run per problem of the set.

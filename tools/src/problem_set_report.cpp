@@ -145,14 +145,14 @@ void writeSummaryMarkdown(const std::vector<SetSummary>& summary, std::ostream& 
 
 void writeProblemCsv(const ProblemSetResult& result, std::ostream& out) {
   out << "set,problem,checker,resolution,planner,run,solved,time,time_limit,state_checks,"
-         "motion_checks,waypoints,length,fcl_recheck_states,fcl_recheck_colliding,error\n";
+         "motion_checks,waypoints,length,fcl_recheck_states,fcl_recheck_colliding,seed,error\n";
   for (const ProblemRun& r : result.runs) {
     out << csvField(r.set) << ',' << csvField(r.problem) << ',' << checkerKindName(r.checker) << ','
         << number(r.resolution) << ',' << csvField(result.planner) << ',' << r.run << ','
         << (r.solved ? 1 : 0) << ',' << number(r.seconds) << ',' << number(r.time_limit) << ','
         << r.state_checks << ',' << r.motion_checks << ',' << r.waypoints << ',' << number(r.length)
-        << ',' << r.recheck_states << ',' << r.recheck_colliding << ',' << csvField(r.error)
-        << '\n';
+        << ',' << r.recheck_states << ',' << r.recheck_colliding << ',' << r.seed << ','
+        << csvField(r.error) << '\n';
   }
 }
 

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <map>
 #include <ostream>
@@ -54,6 +55,7 @@ struct ProblemRun {
   CheckerKind checker = CheckerKind::kOctreeFused;
   double resolution = 0;  // the octree's, metres
   std::size_t run = 0;
+  std::uint64_t seed = 0;  // the problem's own seed (problem_set.cpp, problemSeed); 0: unseeded
   std::string error;    // the problem failed to load (e.g. a start in collision for this checker)
   bool solved = false;  // an exact solution
   double seconds = 0;   // the planner's solve time (the limit when not solved)
