@@ -91,7 +91,8 @@ const OptionTable<SceneOverrides>& sceneOptions() {
          o.time = t;
        }},
       {"--seed", "N",
-       "seeds OMPL's random numbers (overrides the scene's; bench: also the\nstates, default 1)",
+       "seeds OMPL's random numbers (overrides the scene's; bench: also the\nstates, default 1; "
+       "bench-set: each problem its own, made\nfrom N; docs/benchmarking.md)",
        [](const std::string& flag, const std::string& v, SceneOverrides& o) {
          const double s = parseNumber(flag, v);
          if (s < 0 || s != std::floor(s) || s > kMaxSeed) {
