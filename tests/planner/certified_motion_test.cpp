@@ -1,6 +1,7 @@
 // The certified motion validator (ompl/certified_motion_validator.h) and the links' motion bound
 // (robot/motion_bound.h): no point of a link travels farther than its bound along sampled
-// motions (FK, arm with mimic joints and a free-flying body); edges whose midpoint collides are
+// motions (FK, arm with mimic joints and a free-flying body), nor advances along a direction
+// farther than its approach rate allows; edges whose midpoint collides are
 // rejected (both overloads, the last valid state proven before the collision); edges it accepts
 // are free for exact FCL at a dense spacing; answers agree across threads; the scene key picks it
 // by default and the discrete validator on request.
@@ -9,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <memory>
 #include <random>
 #include <string>
@@ -42,6 +44,59 @@ std::string scenePath(const std::string& name) {
   return kSource + "/robots/scenes/" + name;
 }
 
+// Along sampled motions (positions[l][i][k]: point i of link l at step k of kSteps), no point
+// advances along a direction u farther than the approach rate from the part's posed end
+// (LinkMotionBound::linkApproach, forwards from the start, backwards from the end) with the
+// speed growth: u . (p(t) - p(end)) <= rate * s + speed_growth * s^2 / 2 over a part of length s.
+// Counts in `tight` the parts where some point advances more than half of it.
+void checkApproach(const RobotModel& robot, const LinkMotionBound& bound,
+                   const LinkMotionBound::EdgeTerms& terms,
+                   const std::vector<std::vector<Eigen::Vector3d>>& points,
+                   const std::vector<std::vector<std::vector<Eigen::Vector3d>>>& positions,
+                   const std::vector<double>& arms_start, const std::vector<double>& arms_end,
+                   std::mt19937_64& rng, int& tight) {
+  std::normal_distribution<double> normal;
+  std::vector<double> sums(bound.armCount() * LinkMotionBound::kSumValues, 0.0);
+  for (std::size_t l = 0; l < points.size(); ++l) {
+    if (points[l].empty()) continue;
+    const int link = static_cast<int>(l);
+    const std::vector<std::vector<Eigen::Vector3d>>& at = positions[l];
+    const int steps = static_cast<int>(at[0].size()) - 1;
+    std::vector<Eigen::Vector3d> directions;
+    for (int d = 0; d < 4; ++d) {
+      directions.push_back(Eigen::Vector3d(normal(rng), normal(rng), normal(rng)).normalized());
+    }
+    Eigen::Vector3d moved = at[0][steps] - at[0][0];
+    for (const std::vector<Eigen::Vector3d>& p : at) {
+      if ((p[steps] - p[0]).norm() > moved.norm()) moved = p[steps] - p[0];
+    }
+    if (moved.norm() > 0) directions.push_back(moved.normalized());
+    const double growth = terms.link_speed_growth[l];
+    for (const bool from_start : {true, false}) {
+      bound.speedSums(link, terms, from_start ? arms_start.data() : arms_end.data(), sums.data());
+      for (const Eigen::Vector3d& u : directions) {
+        double toward = 0.0, away = 0.0;
+        bound.linkApproach(link, sums.data(), u, toward, away);
+        const double rate = from_start ? toward : away;
+        for (int part : {steps / 32, steps / 8, steps / 2, steps}) {
+          const double s = static_cast<double>(part) / steps;
+          const double limit = rate * s + 0.5 * growth * s * s;
+          double advance = -std::numeric_limits<double>::infinity();
+          for (const std::vector<Eigen::Vector3d>& p : at) {
+            const int end = from_start ? 0 : steps;
+            const int k = from_start ? part : steps - part;
+            advance = std::max(advance, u.dot(p[k] - p[end]));
+          }
+          EXPECT_LE(advance, limit + 1e-9)
+              << robot.link(link).name << " part " << s << " from "
+              << (from_start ? "start" : "end") << " along " << u.transpose();
+          tight += advance > 0 && advance > 0.5 * limit ? 1 : 0;
+        }
+      }
+    }
+  }
+}
+
 // For random straight-line motions in q, the polyline through FK samples of every sampled point
 // (shorter than its path) stays within LinkMotionBound::linkBound; over the first and last
 // parts of the motion, within the posed bounds from that part's posed end (linkRate with the
@@ -56,6 +111,7 @@ void expectArmBoundHolds(const RobotModel& robot, int motions, std::uint64_t see
   const auto n = static_cast<std::size_t>(robot.variableCount());
   constexpr int kSteps = 64;
   int tight_links = 0, tight_posed = 0, tighter_posed = 0, tight_speed = 0, tighter_speed = 0;
+  int approach_tight = 0;
   LinkMotionBound::EdgeTerms terms;
   std::vector<double> arms_start(bound.armCount() * LinkMotionBound::kArmValues),
       arms_end(bound.armCount() * LinkMotionBound::kArmValues);
@@ -71,6 +127,8 @@ void expectArmBoundHolds(const RobotModel& robot, int motions, std::uint64_t see
     // Per link and point, its polyline's length from the start to each step.
     std::vector<std::vector<Eigen::Vector3d>> previous(points.size());
     std::vector<std::vector<std::vector<double>>> travelled(points.size());
+    // Per link and point, its position at each step.
+    std::vector<std::vector<std::vector<Eigen::Vector3d>>> positions(points.size());
     for (int k = 0; k <= kSteps; ++k) {
       for (std::size_t v = 0; v < n; ++v) q[v] = q1[v] + dq[v] * k / kSteps;
       robot.forwardKinematics(q.data(), n, data);
@@ -80,14 +138,21 @@ void expectArmBoundHolds(const RobotModel& robot, int motions, std::uint64_t see
         const Eigen::Isometry3d& X_WL = data.linkPose(static_cast<int>(l));
         travelled[l].resize(points[l].size());
         previous[l].resize(points[l].size());
+        positions[l].resize(points[l].size());
         for (std::size_t i = 0; i < points[l].size(); ++i) {
           const Eigen::Vector3d p_W = X_WL * points[l][i];
+          positions[l][i].push_back(p_W);
           travelled[l][i].push_back(k > 0 ? travelled[l][i].back() + (p_W - previous[l][i]).norm()
                                           : 0.0);
           previous[l][i] = p_W;
         }
       }
     }
+    // Per link, directions to test the approach rates along (LinkMotionBound::linkApproach):
+    // random ones, and the one along the motion's largest displacement, which a link sliding
+    // towards an obstacle approaches it by.
+    checkApproach(robot, bound, terms, points, positions, arms_start, arms_end, rng,
+                  approach_tight);
     for (std::size_t l = 0; l < points.size(); ++l) {
       if (points[l].empty()) continue;
       const int link = static_cast<int>(l);
@@ -137,6 +202,7 @@ void expectArmBoundHolds(const RobotModel& robot, int motions, std::uint64_t see
   EXPECT_GT(tighter_posed, 0);
   EXPECT_GT(tight_speed, 0);
   EXPECT_GT(tighter_speed, 0);
+  EXPECT_GT(approach_tight, 0);
 }
 
 TEST(LinkMotionBound, NoPointOfOcto7TravelsFartherThanItsBound) {

@@ -285,11 +285,11 @@ TEST(MotionClearances, PerLinkOctreeBoundsStayBelowFclsExactDistances) {
     if (fcl.inCollision(q.data(), q.size(), X, *fcl_scratch)) continue;
     if (octree->inCollision(q.data(), q.size(), X, *octree_scratch)) continue;
     ++states;
-    fcl.motionClearances(*fcl_scratch, no_cap.data(), exact.data());
-    octree->motionClearances(*octree_scratch, no_cap.data(), bound.data());
-    octree->motionClearances(*octree_scratch, cap.data(), capped.data());
+    fcl.motionClearances(*fcl_scratch, no_cap.data(), exact.data(), nullptr);
+    octree->motionClearances(*octree_scratch, no_cap.data(), bound.data(), nullptr);
+    octree->motionClearances(*octree_scratch, cap.data(), capped.data(), nullptr);
     ASSERT_FALSE(refine->inCollision(q.data(), q.size(), X, *refine_scratch));
-    refine->motionClearances(*refine_scratch, cap.data(), refined_capped.data());
+    refine->motionClearances(*refine_scratch, cap.data(), refined_capped.data(), nullptr);
     EXPECT_NEAR(*std::min_element(exact.begin(), exact.end()), fcl.clearance(*fcl_scratch), 1e-9);
     for (std::size_t l = 0; l < links; ++l) {
       if (!robot.link(static_cast<int>(l)).hasCollision()) continue;

@@ -7,26 +7,31 @@
 // the validator asks for a tight one, is within kClose of it below the cap; each checked self
 // pair's refined distance likewise; and edges the certified validator accepts are free for exact
 // FCL at 500 states each. A pose restored from an earlier query's link poses answers as
-// setPose does. Skipped without ../shared/data.
+// setPose does. The slabs that come with refined clearances separate each link from its nearest
+// objects, and the other objects are as far as they say. Skipped without ../shared/data.
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <limits>
 #include <memory>
 #include <random>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include <ompl/base/ScopedState.h>
 #include <ompl/util/Console.h>
 
+#include "link_points.h"
 #include "mbm_problems.h"
 #include "octomotion/planner/ompl/certified_motion_validator.h"
 #include "octomotion/planner/ompl/planning_scene.h"
 #include "octomotion/planner/ompl/state_space.h"
 #include "octomotion/planner/reference/fcl_collision_model.h"
+#include "octomotion/planner/robot/collision_meshes.h"
 #include "path_fcl.h"
 
 namespace octomotion {
@@ -108,8 +113,8 @@ TEST_P(HullClearance, RefinedClearancesAreLowerBoundsCloseToFclsDistances) {
   for (int state = 0; state < 60; ++state) {
     freeNearObstacle(*fcl_scratch, *octree_scratch);
     for (double& c : caps) c = cap_of(rng_);
-    fcl_->motionClearances(*fcl_scratch, no_cap.data(), exact.data());
-    octree_->motionClearances(*octree_scratch, caps.data(), refined.data());
+    fcl_->motionClearances(*fcl_scratch, no_cap.data(), exact.data(), nullptr);
+    octree_->motionClearances(*octree_scratch, caps.data(), refined.data(), nullptr);
     for (std::size_t l = 0; l < links; ++l) {
       if (!robot.link(static_cast<int>(l)).hasCollision()) continue;
       const std::string& name = robot.link(static_cast<int>(l)).name;
@@ -174,8 +179,8 @@ TEST_P(HullClearance, PosesRestoredFromAnEarlierQueryAnswerAsSetPose) {
     ASSERT_TRUE(octree_->setPosed(copy, *restored_scratch));
     octree_->setPose(q.data(), q.size(), X, *posed_scratch);
     for (double& c : caps) c = cap_of(rng_);
-    octree_->motionClearances(*posed_scratch, caps.data(), posed.data());
-    octree_->motionClearances(*restored_scratch, caps.data(), restored.data());
+    octree_->motionClearances(*posed_scratch, caps.data(), posed.data(), nullptr);
+    octree_->motionClearances(*restored_scratch, caps.data(), restored.data(), nullptr);
     for (std::size_t l = 0; l < links; ++l) {
       if (caps[l] > 0) {
         EXPECT_EQ(restored[l], posed[l]) << "link " << l << " state " << state;
@@ -187,6 +192,113 @@ TEST_P(HullClearance, PosesRestoredFromAnEarlierQueryAnswerAsSetPose) {
                 octree_->linkPairDistance(*posed_scratch, a, b, cap))
           << robot.link(a).name << " / " << robot.link(b).name << " state " << state;
     }
+  }
+}
+
+// An environment primitive's extent along a unit direction u (world frame): the largest u . o
+// over its points o.
+double primitiveSupport(const EnvironmentObject& object, const Eigen::Vector3d& u) {
+  const Eigen::Vector3d u_O = object.X_WO.linear().transpose() * u;
+  double extent = 0.0;
+  if (const auto* box = std::get_if<Box>(&object.primitive)) {
+    extent = u_O.cwiseAbs().dot(box->half_extents);
+  } else if (const auto* ball = std::get_if<Sphere>(&object.primitive)) {
+    extent = ball->radius;
+  } else {
+    const auto& cylinder = std::get<Cylinder>(object.primitive);
+    extent = 0.5 * cylinder.length * std::abs(u_O.z()) +
+             cylinder.radius * std::sqrt(std::max(0.0, 1.0 - u_O.z() * u_O.z()));
+  }
+  return u.dot(object.X_WO.translation()) + extent;
+}
+
+// The distance from p (world frame) to an environment primitive's solid.
+double primitiveDistance(const EnvironmentObject& object, const Eigen::Vector3d& p_W) {
+  const Eigen::Vector3d p = object.X_WO.inverse() * p_W;
+  if (const auto* box = std::get_if<Box>(&object.primitive)) {
+    return (p.cwiseAbs() - box->half_extents).cwiseMax(0.0).norm();
+  }
+  if (const auto* ball = std::get_if<Sphere>(&object.primitive)) {
+    return std::max(0.0, p.norm() - ball->radius);
+  }
+  const auto& cylinder = std::get<Cylinder>(object.primitive);
+  const double radial = std::max(0.0, p.head<2>().norm() - cylinder.radius);
+  const double axial = std::max(0.0, std::abs(p.z()) - 0.5 * cylinder.length);
+  return std::hypot(radial, axial);
+}
+
+// The slabs refined clearances come with (NearestObstacle): each separates the link's points
+// from some object by its gap along its direction, the first gap is at most the link's FCL
+// distance, every object no slab separates is at least `others` from the link's points, and
+// `others` is at least the first gap (the slabs' objects are the nearest).
+TEST_P(HullClearance, NearestObjectSlabsSeparateTheLinkFromThoseObjects) {
+  const RobotModel& robot = scene_.model->robot();
+  const auto links = static_cast<std::size_t>(robot.linkCount());
+  for (const EnvironmentGeometry::Item& item : scene_.environment->items()) {
+    ASSERT_EQ(item.spec.kind, EnvironmentObject::Kind::kPrimitive) << item.spec.name;
+  }
+  CollisionMeshes meshes(false, false);
+  std::vector<std::vector<Eigen::Vector3d>> points_L;
+  for (const Link& link : robot.links())
+    points_L.push_back(test::linkPoints(link, meshes, 1u << 20));
+  auto fcl_scratch = fcl_->makeBackendScratch();
+  auto octree_scratch = octree_->makeBackendScratch();
+  const std::vector<double> no_cap(links, std::numeric_limits<double>::infinity());
+  std::vector<double> caps(links), exact(links), refined(links);
+  std::vector<NearestObstacle> nearest(links);
+  std::uniform_real_distribution<double> cap_of(0.0, 0.025);
+  int slabs = 0, second = 0;
+  for (int state = 0; state < 60; ++state) {
+    freeNearObstacle(*fcl_scratch, *octree_scratch);
+    for (double& c : caps) c = cap_of(rng_);
+    fcl_->motionClearances(*fcl_scratch, no_cap.data(), exact.data(), nullptr);
+    octree_->motionClearances(*octree_scratch, caps.data(), refined.data(), nearest.data());
+    const RobotData* posed = fcl_->posedRobot(*fcl_scratch);
+    ASSERT_NE(posed, nullptr);
+    for (std::size_t l = 0; l < links; ++l) {
+      const NearestObstacle& o = nearest[l];
+      if (!o.valid() || points_L[l].empty()) continue;
+      const std::string& name = robot.link(static_cast<int>(l)).name;
+      ++slabs;
+      EXPECT_LE(o.gap[0], exact[l] + 1e-5) << name << " state " << state;
+      // The slabs' objects are the nearest by their bounds, which the gaps are below.
+      EXPECT_GE(o.others, o.gap[0]) << name << " state " << state;
+      std::vector<Eigen::Vector3d> points_W;
+      for (const Eigen::Vector3d& p : points_L[l]) {
+        points_W.push_back(posed->linkPose(static_cast<int>(l)) * p);
+      }
+      // Per slab, whether some object lies beyond it; per object, whether a slab holds it.
+      std::vector<bool> slab_found(NearestObstacle::kSlabs, false);
+      for (const EnvironmentGeometry::Item& item : scene_.environment->items()) {
+        bool held = false;
+        for (std::size_t k = 0; k < NearestObstacle::kSlabs && o.valid(k); ++k) {
+          const Eigen::Vector3d& u = o.toward_W[k];
+          EXPECT_NEAR(u.norm(), 1.0, 1e-9);
+          double link_extent = -std::numeric_limits<double>::infinity();
+          for (const Eigen::Vector3d& p : points_W) link_extent = std::max(link_extent, u.dot(p));
+          const double beyond = -primitiveSupport(item.spec, -u) - link_extent;
+          if (beyond >= o.gap[k] - 1e-9) {
+            held = true;
+            slab_found[k] = true;
+          }
+        }
+        if (held) continue;
+        double distance = std::numeric_limits<double>::infinity();
+        for (const Eigen::Vector3d& p : points_W) {
+          distance = std::min(distance, primitiveDistance(item.spec, p));
+        }
+        EXPECT_GE(distance, o.others - 1e-9) << name << " state " << state << " " << item.spec.name;
+      }
+      for (std::size_t k = 0; k < NearestObstacle::kSlabs && o.valid(k); ++k) {
+        EXPECT_TRUE(slab_found[k]) << name << " state " << state << " slab " << k;
+        second += k == 1 ? 1 : 0;
+      }
+    }
+  }
+  EXPECT_GT(slabs, 20);  // links near an obstacle, below their caps, with a hull
+  // Only the bookshelf has objects near enough to each other for two slabs.
+  if (std::string(GetParam()) == "bookshelf_thin_panda") {
+    EXPECT_GT(second, 0);
   }
 }
 

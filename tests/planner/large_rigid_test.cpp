@@ -177,7 +177,7 @@ TEST(LargeRigid, TheBuildingsMeshPiecesGiveFclsAnswersAndLowerBounds) {
     ++near;
     const double cap = unit(rng) * 3 * voxel;
     double refined = 0;
-    octree->motionClearances(*octree_scratch, &cap, &refined);
+    octree->motionClearances(*octree_scratch, &cap, &refined, nullptr);
     EXPECT_LE(refined, exact + 1e-5) << "state " << i;  // FCL's GJK tolerance aside
     EXPECT_GE(refined, std::min({exact, cap, voxel / 8}) - 1e-5) << "state " << i;
     tight += exact < cap;

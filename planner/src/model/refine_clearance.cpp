@@ -7,10 +7,13 @@
 // of a voxel of contact: there FCL's distance between the meshes decides, where a hull wraps
 // around an object (an open gripper around a grasped box) or the geometry nearly touches.
 #include <algorithm>
+#include <array>
 #include <cstddef>
+#include <limits>
 #include <variant>
 
 #include "internal/refine.h"
+#include "octomotion/planner/model/collision_backend.h"
 
 namespace octomotion {
 
@@ -46,9 +49,11 @@ constexpr double kHullTolerance = 1e-2;
 
 // A lower bound on the distance from `link`'s elements to the environment's objects, or `cap`
 // when at least `cap`: per object, the hulls' bound when it reaches the best so far or is above
-// the object's hullTrusted, else FCL's distance.
+// the object's hullTrusted, else FCL's distance. With `nearest`: the slabs of the nearest
+// objects by those bounds, while they have one (NearestObstacle), and the least bound on the
+// others.
 double refineLinkDistance(const RefineData& data, RefineScratch& r, const RobotData& robot,
-                          int link, double cap, const WorldGrid& grid) {
+                          int link, double cap, const WorldGrid& grid, NearestObstacle* nearest) {
   const ConvexPoints& hull_L = data.link_hulls_L[static_cast<std::size_t>(link)];
   const Eigen::Isometry3d& X_WL = robot.linkPose(link);
   // The link's hull lies in this ball: most objects are farther than it is from what is asked.
@@ -56,20 +61,50 @@ double refineLinkDistance(const RefineData& data, RefineScratch& r, const RobotD
   const double reach = hull_L.reach() + hull_L.radius();
   bool posed = false;
   double best = cap;
+  // The nearest objects so far, by their bounds (ascending; a slab's gap 0 when it has none),
+  // and the least bound on the others.
+  struct Near {
+    double bound, gap;
+    const RefineObject* object;
+    Eigen::Vector3d direction_O;
+  };
+  constexpr std::size_t kSlabs = NearestObstacle::kSlabs;
+  std::array<Near, kSlabs> near{};
+  std::size_t kept = 0;
+  double others = cap;  // every object is below the cap or at least as far
+  auto record = [&](const RefineObject& object, double bound, double gap,
+                    const Eigen::Vector3d* direction_O) {
+    Near entry{bound, direction_O ? gap : 0.0, &object,
+               direction_O ? *direction_O : Eigen::Vector3d::Zero()};
+    for (std::size_t k = 0; k < kept; ++k) {
+      if (entry.bound < near[k].bound) std::swap(entry, near[k]);
+    }
+    if (kept < kSlabs) {
+      near[kept++] = entry;
+    } else {
+      others = std::min(others, entry.bound);
+    }
+  };
   const std::size_t objects = data.objects.size();
   for (std::size_t i = 0; i < objects; ++i) {
     const RefineObject& object = data.objects[i];
     if (object.shapes.empty()) continue;
+    double gap = 0.0;  // the hulls' bound, 0 when not measured
+    Eigen::Vector3d* direction_O = nullptr;
     if (!hull_L.empty()) {
-      if (distanceToBox(object.box_W, centre_W) - reach >= best) continue;
+      const double boxed = distanceToBox(object.box_W, centre_W) - reach;
+      if (boxed >= best) {
+        if (nearest) record(object, boxed, 0.0, nullptr);
+        continue;
+      }
       if (!object.hull_O.empty()) {
-        Eigen::Vector3d& direction_O =
-            r.link_object_directions[static_cast<std::size_t>(link) * objects + i];
-        const double h = convexDistanceBelow(object.hull_O, hull_L, object.X_OW * X_WL, best,
-                                             &direction_O, kHullTolerance);
-        if (h >= best || h > hullTrusted(grid, object)) {
+        direction_O = &r.link_object_directions[static_cast<std::size_t>(link) * objects + i];
+        gap = convexDistanceBelow(object.hull_O, hull_L, object.X_OW * X_WL, best, direction_O,
+                                  kHullTolerance);
+        if (gap >= best || gap > hullTrusted(grid, object)) {
           ++r.hull_distances;
-          best = std::min(best, h);
+          best = std::min(best, gap);
+          if (nearest) record(object, gap, gap, direction_O);
           continue;
         }
       }
@@ -78,15 +113,38 @@ double refineLinkDistance(const RefineData& data, RefineScratch& r, const RobotD
       refinePoseLink(data, r, robot, link);
       posed = true;
     }
+    double object_best = best;
     for (std::size_t e : data.link_elements[static_cast<std::size_t>(link)]) {
       const fcl::CollisionObjectd& element = r.fcl.objects[e];
-      if (object.box_W.distance(element.getAABB()) >= best) continue;
+      if (object.box_W.distance(element.getAABB()) >= object_best) continue;
       for (const fcl::CollisionObjectd& shape : object.shapes) {
         ++r.fcl_distances;
-        best = fcl_internal::distanceBelow(element, shape, best);
-        if (best <= 0) return 0;
+        object_best = fcl_internal::distanceBelow(element, shape, object_best);
+        if (object_best <= 0) return 0;
       }
     }
+    best = std::min(best, object_best);
+    // FCL's distance is below the running best, or the object is at least that far: either is a
+    // lower bound on its distance. The hulls' slab, when measured, still separates them.
+    if (nearest) record(object, object_best, gap, direction_O);
+  }
+  if (nearest && best < cap) {
+    // The nearest objects with a slab, in order, up to the first without; that one and the rest
+    // are held off by `others`. The slab's direction points from the link towards the object
+    // (convexDistanceBelow's runs from its second set to its first).
+    std::size_t slabs = 0;
+    while (slabs < kept && near[slabs].gap > 0) ++slabs;
+    if (slabs == 0) return best;
+    for (std::size_t k = 0; k < kSlabs; ++k) {
+      if (k < slabs) {
+        nearest->gap[k] = near[k].gap;
+        nearest->toward_W[k] =
+            (near[k].object->X_OW.linear().transpose() * near[k].direction_O).normalized();
+      } else if (k < kept) {
+        others = std::min(others, near[k].bound);
+      }
+    }
+    nearest->others = others;
   }
   return best;
 }
@@ -95,7 +153,8 @@ double refineLinkDistance(const RefineData& data, RefineScratch& r, const RobotD
 }  // namespace detail
 
 void OctreeCollisionModel::refineClearancesPerLink(const CheckScratch& scratch, const double* caps,
-                                                   double* per_link) const {
+                                                   double* per_link,
+                                                   NearestObstacle* nearest) const {
   if (!refine_) return;
   // Farther than two voxels the grid's bound is within its own looseness of the distance, and
   // a tighter bound costs more than the bisection the looser one asks for.
@@ -107,8 +166,9 @@ void OctreeCollisionModel::refineClearancesPerLink(const CheckScratch& scratch, 
       continue;
     }
     if (r == nullptr) r = &detail::refineScratch(*refine_, robot_, id_, scratch.refine);
-    per_link[l] = std::max(
-        per_link[l], detail::refineLinkDistance(*refine_, *r, scratch.robot, l, caps[l], grid()));
+    per_link[l] =
+        std::max(per_link[l], detail::refineLinkDistance(*refine_, *r, scratch.robot, l, caps[l],
+                                                         grid(), nearest ? nearest + l : nullptr));
   }
 }
 

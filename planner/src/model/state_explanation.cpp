@@ -125,9 +125,10 @@ void CollisionBackend::explainContacts(const double* q, std::size_t q_size,
 }
 
 void CollisionBackend::motionClearances(BackendScratch& scratch, const double* /*caps*/,
-                                        double* per_link) const {
+                                        double* per_link, NearestObstacle* nearest) const {
   const double c = motionClearance(scratch);
   for (int l = 0; l < robot().linkCount(); ++l) per_link[l] = c;
+  if (nearest) std::fill_n(nearest, robot().linkCount(), NearestObstacle{});
 }
 
 bool CollisionBackend::poseForExplain(const RobotModel& robot, const double* q, std::size_t q_size,

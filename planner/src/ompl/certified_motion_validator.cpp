@@ -6,7 +6,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <exception>
 #include <limits>
 #include <vector>
@@ -227,6 +226,9 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
   t.pair_rate.clear();
   t.link_speed.clear();
   t.pair_speed.clear();
+  // Exact answers on fixed-base robots: the nearest obstacles' slabs prove links too.
+  const bool slabs = t.slabs = exact && arm_count > 0;
+  t.nearest.resize(links);
   constexpr double kNoRate = std::numeric_limits<double>::infinity();
   const ob::SpaceInformation* si = si_;
   if (!direct) t.useSpace(si->getStateSpace());
@@ -302,6 +304,7 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
       t.link_speed.resize(t.link_speed.size() + stride, kNoRate);
       t.pair_speed.resize(t.pair_speed.size() + pairs, kNoRate);
     }
+    if (slabs) t.clearSlabs(slot, stride);
     return slot;
   };
   // A proof's collision check of the state in t.q, of the halves asked (one at least).
@@ -352,7 +355,9 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
         const std::size_t l = t.active_links[k];
         t.caps[l] = capOf(in, slot, k, l, false);
       }
-      backend.motionClearances(scratch, t.caps.data(), t.clearance.data() + slot * stride);
+      backend.motionClearances(scratch, t.caps.data(), t.clearance.data() + slot * stride,
+                               slabs ? t.nearest.data() : nullptr);
+      if (slabs) t.setSlabs(*bound_, slot, stride, in);
       ++tally.clearance_states;
     }
     if (self && distances && !t.active_pairs.empty()) {
@@ -424,7 +429,8 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
       if (arm_count > 0 && b > decided_by_ends && b >= va[i] + vb[i]) {
         b = boundOver(pair, i, s, in.slot_a, in.slot_b);
       }
-      if (b <= decided_by_ends || b < va[i] + vb[i]) {
+      if (b <= decided_by_ends || b < va[i] + vb[i] ||
+          (slabs && !pair && t.provenBySlabs(i, in, va[i], vb[i], stride))) {
         if (k < 64) done |= std::uint64_t{1} << k;
       } else {
         open = std::max(open, b);
@@ -478,19 +484,7 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
     // The end's place in the remembered ends (its key in t.key): it is remembered when the
     // place holds its key.
     auto rememberedPlace = [&](double t_edge) -> Scratch::Remembered& {
-      const std::vector<double>& q = t_edge == 0.0 ? t.q1 : t.q2;
-      const Eigen::Isometry3d& X = t_edge == 0.0 ? t.X_WB1 : t.X_WB2;
-      t.key.assign(q.begin(), q.end());
-      if (robot.isFreeFlying()) {
-        t.key.insert(t.key.end(), X.matrix().data(), X.matrix().data() + 12);
-      }
-      std::uint64_t hash = 1469598103934665603ull;  // FNV-1a over the values' bytes
-      for (double v : t.key) {
-        std::uint64_t bits = 0;
-        std::memcpy(&bits, &v, sizeof bits);
-        hash = (hash ^ bits) * 1099511628211ull;
-      }
-      return t.remembered[(hash ^ (hash >> 29)) % Scratch::kRemembered];
+      return t.rememberedPlace(t_edge == 0.0, robot.isFreeFlying());
     };
     auto evaluateEnd = [&](double t_edge, std::size_t& slot) {
       Scratch::Remembered& r = rememberedPlace(t_edge);
@@ -506,6 +500,7 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
             t.arms = r.arms;
             t.setRates(*bound_, nullptr, slot, stride, nullptr);
           }
+          if (slabs) t.restoreSlabs(*bound_, r, slot, stride);
           for (std::size_t l : t.active_links) t.clearance[slot * stride + l] = r.clearance[l];
           for (std::size_t p : t.active_pairs) t.distance[slot * pairs + p] = r.distance[p];
           return true;
@@ -525,6 +520,7 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
         for (std::size_t l : t.active_links) r.clearance[l] = 0.0;
       }
       for (std::size_t p : t.active_pairs) r.distance[p] = t.distance[slot * pairs + p];
+      t.keepSlabs(r, slot, stride);
       return true;
     };
     // The collision screen (the header's kScreenLevels): an edge through a colliding state is

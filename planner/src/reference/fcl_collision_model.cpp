@@ -216,8 +216,9 @@ double FclCollisionModel::environmentDistance(Scratch& s, double cap) const {
 }
 
 void FclCollisionModel::motionClearances(BackendScratch& scratch, const double* caps,
-                                         double* per_link) const {
+                                         double* per_link, NearestObstacle* nearest) const {
   Scratch& s = scratchOf(scratch);
+  if (nearest) std::fill_n(nearest, robot_.linkCount(), NearestObstacle{});
   for (int l = 0; l < robot_.linkCount(); ++l) {
     per_link[l] = std::numeric_limits<double>::infinity();
   }

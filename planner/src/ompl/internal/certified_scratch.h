@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -78,6 +79,42 @@ struct CertifiedMotionValidator::Scratch {
     const double speed_growth = pair ? terms.pair_speed_growth[i] : terms.link_speed_growth[i];
     return std::min(r * s + 0.5 * growth * s * s, v * s + 0.5 * speed_growth * s * s);
   }
+  // Exact answers on fixed-base robots: per link, the nearest obstacles' slabs of the state at
+  // hand (CollisionBackend::motionClearances); per evaluated state and link, kNear values: the
+  // slabs' gaps (NaN: none), the others' bound, the slabs' directions (3 each), and how fast the
+  // link approaches each slab's object along it as the edge runs forwards and backwards
+  // (LinkMotionBound::linkApproach). An end is remembered with the first kNearKept.
+  static constexpr std::size_t kSlabs = NearestObstacle::kSlabs;
+  static constexpr std::size_t kNearKept = 1 + kSlabs * 4;
+  static constexpr std::size_t kNear = kNearKept + 2 * kSlabs;
+  std::vector<NearestObstacle> nearest;
+  std::vector<double> link_near;  // its slots beyond the evaluated states' are stale
+  bool slabs = false;             // the edge at hand uses them
+  // A new slot without slabs (its other values are written with its slabs).
+  void clearSlabs(std::size_t slot, std::size_t stride) {
+    const std::size_t end = (slot + 1) * stride * kNear;
+    if (link_near.size() < end) link_near.resize(end);
+    for (std::size_t l = 0; l < stride; ++l) {
+      link_near[(slot * stride + l) * kNear] = std::numeric_limits<double>::quiet_NaN();
+    }
+  }
+  // Fills a slot's slab values from `nearest` for the active links not proven over `in` (null:
+  // every active link), with the rates from the speed sums setRates made for the slot.
+  void setSlabs(const LinkMotionBound& bound, std::size_t slot, std::size_t stride,
+                const Interval* in);
+  // Whether link i is free over `in`, whose ends have the clearances ca and cb: the part of `in`
+  // from each end over which no point can reach the clearance (the posed bounds), or, with a
+  // slab, over which the link neither crosses the slab nor reaches the other objects, covers
+  // `in` (docs/validation.md §4).
+  bool provenBySlabs(std::size_t i, const Interval& in, double ca, double cb,
+                     std::size_t stride) const {
+    return stretch(i, in.slot_a, true, ca, stride) + stretch(i, in.slot_b, false, cb, stride) >
+           in.b - in.a;
+  }
+  // The part of an edge, from the end in `slot` (forwards: towards the edge's end), over which
+  // link i is proven free.
+  double stretch(std::size_t i, std::size_t slot, bool forwards, double clear,
+                 std::size_t stride) const;
   std::vector<Interval> todo;
   // The link poses of the states the collision screen found free, by k for t = k / 2^levels
   // (posed[k] when held), so a proof's evaluation there poses the robot without forward
@@ -104,7 +141,8 @@ struct CertifiedMotionValidator::Scratch {
   // which was checked in full (or remembered).
   struct Remembered {
     std::uint64_t validator = 0;
-    std::vector<double> key, clearance, distance, arms;
+    // near: per link, the first kNearKept of the slot's kNear values.
+    std::vector<double> key, clearance, distance, arms, near;
     // It holds the end of this key, remembered by this validator.
     bool holds(std::uint64_t by, const std::vector<double>& end_key) const {
       return validator == by && key == end_key;
@@ -113,6 +151,14 @@ struct CertifiedMotionValidator::Scratch {
   static constexpr std::size_t kRemembered = 64;
   std::array<Remembered, kRemembered> remembered;
   std::vector<double> key;
+  // The place of an edge's end (q1 or q2, with X_WB1 or X_WB2 for a free-flying robot) among
+  // the remembered ends, its key in `key`: it is remembered when the place holds that key.
+  Remembered& rememberedPlace(bool at_start, bool free_flying);
+  // Keeps the slab values of the end in `slot` with it, or restores them into the slot (the
+  // rates from the slot's speed sums).
+  void keepSlabs(Remembered& r, std::size_t slot, std::size_t stride) const;
+  void restoreSlabs(const LinkMotionBound& bound, const Remembered& r, std::size_t slot,
+                    std::size_t stride);
   // Free-flying robots: an OMPL state for the interpolated ones (the space kept alive with it).
   ompl::base::StateSpacePtr space;
   ompl::base::State* state = nullptr;

@@ -7,8 +7,10 @@
 // virtual call.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <memory>
 
 #include <Eigen/Geometry>
@@ -32,6 +34,22 @@ enum class ClearanceBound {
   kNone,        // no clearance: always 0
   kLowerBound,  // a lower bound on the distance to the environment
   kExact,       // the exact distance to the environment
+};
+
+// A link's nearest environment objects as separating slabs certify them (motionClearances):
+// along the unit direction toward_W[k] (world frame, from the link towards the k-th nearest
+// object) every point of that object lies at least gap[k] beyond every point of the link, and
+// every object not given a slab is at least `others` from the link. The certified motion
+// validator bounds how fast the link approaches each slab's object along its direction, which
+// for a link sliding past it is far below the link's speed (docs/validation.md §4). A NaN gap:
+// no slab (the first NaN ends the list).
+struct NearestObstacle {
+  static constexpr std::size_t kSlabs = 2;
+  std::array<double, kSlabs> gap{std::numeric_limits<double>::quiet_NaN(),
+                                 std::numeric_limits<double>::quiet_NaN()};
+  std::array<Eigen::Vector3d, kSlabs> toward_W{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
+  double others = 0.0;
+  bool valid(std::size_t k = 0) const { return gap[k] > 0; }
 };
 
 class CollisionBackend {
@@ -80,9 +98,11 @@ class CollisionBackend {
   // The same bound per link (robot link order) into per_link[robot().linkCount()]: a link's own
   // distance to the environment, so that a link that barely moves is not held to the clearance
   // of another. caps[l] > 0: a value at or above it may be written as caps[l]; caps[l] <= 0: the
-  // link's value is not needed (unspecified). Default: motionClearance() for every link.
-  virtual void motionClearances(BackendScratch& scratch, const double* caps,
-                                double* per_link) const;
+  // link's value is not needed (unspecified). `nearest`, when not null, receives per link with
+  // caps[l] > 0 and a value below it the nearest object's slab, where the backend has one (NaN
+  // gap otherwise). Default: motionClearance() for every link, no slab.
+  virtual void motionClearances(BackendScratch& scratch, const double* caps, double* per_link,
+                                NearestObstacle* nearest) const;
   // Whether a state this backend finds free is free for the exact geometry with no margin (the
   // FCL checker; octree models with RefineMode::kExact), rather than by voxels that hold the
   // geometry with up to a voxel to spare. The certified motion validator then proves each edge

@@ -59,13 +59,15 @@ class OctreeBackend final : public CollisionBackend {
   }
   // OctreeCollisionModel::clearanceLowerBoundGridPerLink, less the same voxel diagonal on the
   // moveTree path.
-  void motionClearances(BackendScratch& scratch, const double* caps,
-                        double* per_link) const override {
+  // With RefineMode::kExact, the slabs of refineClearancesPerLink.
+  void motionClearances(BackendScratch& scratch, const double* caps, double* per_link,
+                        NearestObstacle* nearest) const override {
     const double slack =
         path_ == CheckerPath::kMoveTree ? std::sqrt(3.0) * model_->grid().voxelSize() : 0.0;
     model_->clearanceLowerBoundGridPerLink(scratchOf(scratch).check, caps, slack, per_link);
+    if (nearest) std::fill_n(nearest, model_->robot().linkCount(), NearestObstacle{});
     if (model_->refine() == RefineMode::kExact) {
-      model_->refineClearancesPerLink(scratchOf(scratch).check, caps, per_link);
+      model_->refineClearancesPerLink(scratchOf(scratch).check, caps, per_link, nearest);
     }
   }
   bool exactAnswers() const override { return model_->refine() == RefineMode::kExact; }

@@ -6,7 +6,11 @@
 // link l when l's path-length bound over it (LinkMotionBound, robot/motion_bound.h; for a
 // fixed-base robot the smaller of the levers' bound and the posed bounds from the interval's
 // ends) is less than the sum of l's clearances at its ends (a lower bound on its distance,
-// CollisionBackend::motionClearances). Pair by pair, it is free of self-collision when the
+// CollisionBackend::motionClearances). With exact answers on a fixed-base robot, a link whose
+// clearance comes with its nearest objects' separating slabs is also free over the parts, from
+// each end, in which it can neither cross those slabs (at the rate it approaches them) nor
+// travel as far as the other objects; the interval is free when the two parts cover it. Pair by
+// pair, it is free of self-collision when the
 // bound on the change of the pair's distance (LinkMotionBound::pairBound: only the joints that
 // move one link and not the other) is less than the sum of the pair's distance bounds at its
 // ends (LinkMotionBound::pairDistance; for exact answers, the links' own distance,

@@ -75,9 +75,9 @@ class FclCollisionModel final : public CollisionBackend {
                BackendScratch& scratch) const override {
     setConfiguration(q, q_size, X_WB, scratchOf(scratch));
   }
-  // environmentDistance link by link, each capped at caps[l].
-  void motionClearances(BackendScratch& scratch, const double* caps,
-                        double* per_link) const override;
+  // environmentDistance link by link, each capped at caps[l]; no slabs.
+  void motionClearances(BackendScratch& scratch, const double* caps, double* per_link,
+                        NearestObstacle* nearest) const override;
   const RobotData* posedRobot(BackendScratch& scratch) const override;
   ClearanceBound clearanceBound() const override { return ClearanceBound::kExact; }
   bool exactAnswers() const override { return true; }
