@@ -98,9 +98,10 @@ class CollisionBackend {
   // The same bound per link (robot link order) into per_link[robot().linkCount()]: a link's own
   // distance to the environment, so that a link that barely moves is not held to the clearance
   // of another. caps[l] > 0: a value at or above it may be written as caps[l]; caps[l] <= 0: the
-  // link's value is not needed (unspecified). `nearest`, when not null, receives per link with
-  // caps[l] > 0 and a value below it the nearest object's slab, where the backend has one (NaN
-  // gap otherwise). Default: motionClearance() for every link, no slab.
+  // link's value is not needed (unspecified). `nearest`, when not null, receives per link the
+  // nearest objects' slabs (NearestObstacle) where the backend has them, for links with
+  // caps[l] > 0 and a value below it, and no slab (a NaN gap) for the others. Default:
+  // motionClearance() for every link, no slab.
   virtual void motionClearances(BackendScratch& scratch, const double* caps, double* per_link,
                                 NearestObstacle* nearest) const;
   // Whether a state this backend finds free is free for the exact geometry with no margin (the

@@ -423,8 +423,9 @@ class OctreeCollisionModel {
   // §7), or FCL's exact distance where that hull bound is within an eighth of a voxel of contact
   // (a 64th against a primitive) or the object is not a primitive. And the same between two links'
   // geometry, or `cap` when at least `cap`. Without kExact: per_link unchanged, and 0.
-  // `nearest`, when not null, receives for each link refined below its cap the slab of its
-  // nearest object's hull distance, when that object has a hull (else it is left as it is).
+  // `nearest`, when not null, receives for each link refined below its cap the slabs of its
+  // nearest objects' hull distances, nearest first while each has one, and a bound on the
+  // others (NearestObstacle); a link whose nearest object has no slab is left as it is.
   void refineClearancesPerLink(const CheckScratch& scratch, const double* caps, double* per_link,
                                NearestObstacle* nearest = nullptr) const;
   double refinedPairDistance(const CheckScratch& scratch, int link_a, int link_b, double cap) const;
