@@ -235,10 +235,10 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
   const std::size_t stride = std::max<std::size_t>(links, 1);
   // What an evaluated state's (in `slot`) clearance (distance) of the k-th active link (pair) i
   // must reach, above which it decides nothing more: capped there, so the grid, the hulls and FCL
-  // stop early. At an end (no interval), the edge's bound from it. At the midpoint of [a, b],
-  // enough to prove both halves at once, each half's bound less the value at its outer end, plus
-  // a 512th of the half's bound; 0 (not computed) for one already proven over [a, b]. A half's
-  // bound is the edge's, or the posed bounds from its ends (Scratch::posedBound).
+  // stop early. At an end (no interval), kEndCapShare of the edge's bound from it. At the
+  // midpoint of [a, b], enough to prove both halves at once, each half's bound less the value at
+  // its outer end, plus a 512th of the half's bound; 0 (not computed) for one already proven over
+  // [a, b]. A half's bound is the edge's, or the posed bounds from its ends (Scratch::posedBound).
   // Link (pair) i's bound over a part of length s of the edge: the edge's times s, or less,
   // the posed bounds from the ends (slots) of the part.
   auto boundOver = [&](bool pair, std::size_t i, double s, std::size_t slot_a, std::size_t slot_b) {
@@ -248,7 +248,7 @@ bool CertifiedMotionValidator::check(const ob::State* s1, const ob::State* s2, b
   };
   auto capOf = [&](const Scratch::Interval* in, std::size_t slot, std::size_t k, std::size_t i,
                    bool pair) {
-    if (!in) return boundOver(pair, i, 1.0, slot, slot);
+    if (!in) return kEndCapShare * boundOver(pair, i, 1.0, slot, slot);
     if (k < 64 && ((pair ? in->pairs_done : in->links_done) >> k & 1)) return 0.0;
     const std::vector<double>& values = pair ? t.distance : t.clearance;
     const std::size_t width = pair ? pairs : stride;

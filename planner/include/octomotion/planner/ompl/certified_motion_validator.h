@@ -68,6 +68,11 @@ class CertifiedMotionValidator : public ompl::base::MotionValidator {
   // Exact answers: a self pair's exact distance (CollisionBackend::linkPairDistance) is asked
   // only where its sphere bound is below this many resolutions (and below what is needed).
   static constexpr double kExactNear = 2.0;
+  // The share of the edge's bound from an end up to which the end's clearances and distances
+  // are measured. The whole bound would let one end prove the edge alone, which it seldom does;
+  // measuring that far costs more (more obstacles within the cap) than the deeper proofs the
+  // smaller cap asks for now and then. The midpoint, evaluated next, proves the halves.
+  static constexpr double kEndCapShare = 0.25;
 
   // `resolution` (metres, > 0): the final resolution above, usually the scene's voxel size.
   // Throws InvalidArgument for a null backend or bound, a bound made for another robot (or
