@@ -112,6 +112,45 @@ TEST(ConvexHull, ClimbFindsTheHighestOfEveryPoint) {
   EXPECT_GE(exact, 120);
 }
 
+// Climbs start at the support point of the cell of the cube of directions that d crosses: the
+// directions that pick the cell are checked where they are awkward: on the cells' and faces'
+// borders, along the axes, with zero and negative zero components, at scales from 1e-290 to
+// 1e290 and beyond the start table's range (1e-305, 1e305), and with a NaN component (no
+// crash; any answer). The climb must still find the highest point.
+TEST(ConvexHull, ClimbFindsTheHighestFromEveryStartCell) {
+  std::mt19937_64 rng(0x4016);
+  const std::vector<double> coordinates = {-1.0,  -0.75, -0.5, -0.25, -0.0, 0.0,
+                                           0.125, 0.25,  0.5,  0.75,  1.0,  0.3};
+  const std::vector<double> scales = {1e-305, 1e-290, 1e-3, 1.0, 7.0, 1e290, 1e305};
+  for (int set = 0; set < 8; ++set) {
+    const std::vector<Eigen::Vector3d> points = cloud(rng, set % 4);
+    const ConvexPoints hull = ConvexPoints::hullOf(points);
+    if (!hull.hasEdges()) continue;
+    for (double x : coordinates) {
+      for (double y : coordinates) {
+        for (double z : coordinates) {
+          for (double scale : scales) {
+            const Eigen::Vector3d d = Eigen::Vector3d(x, y, z) * scale;
+            if (d.isZero(0)) continue;
+            // The comparison on the unit direction: the scaled products may under- or overflow.
+            const Eigen::Vector3d unit = Eigen::Vector3d(x, y, z).normalized();
+            const double climbed = unit.dot(hull.point(hull.climbSupport(d)));
+            const double highest = highestAlong(points, unit);
+            EXPECT_GE(climbed, highest - 1e-12 * (1 + std::abs(highest)))
+                << "set " << set << " d " << d.transpose();
+          }
+        }
+      }
+    }
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    for (const Eigen::Vector3d& d :
+         {Eigen::Vector3d(nan, 1, 0), Eigen::Vector3d(1, nan, 0.5), Eigen::Vector3d(0, 0.2, nan),
+          Eigen::Vector3d(nan, nan, nan), Eigen::Vector3d(0, 0, 0)}) {
+      EXPECT_LT(hull.climbSupport(d), hull.size());
+    }
+  }
+}
+
 TEST(ConvexHull, FarFromTheOriginTheClimbStillHoldsEveryPoint) {
   // Small sets a hundred kilometres out: rounding in the planes is then far above the sets'
   // own scale. A hull may not be made; one that is must still hold every point.

@@ -85,20 +85,48 @@ ConvexPoints::ConvexPoints(const std::vector<Eigen::Vector3d>& points,
     neighbours_.insert(neighbours_.end(), list.begin(), list.end());
     first_.push_back(static_cast<std::uint32_t>(neighbours_.size()));
   }
-  for (int k = 0; k < 27; ++k) {
-    const Eigen::Vector3d d(k % 3 - 1, (k / 3) % 3 - 1, k / 9 - 1);
-    start_[static_cast<std::size_t>(k)] = static_cast<std::uint32_t>(supportIndex(d));
+  // Each cell's support point at the direction through its centre.
+  for (int face = 0; face < 6; ++face) {
+    const int k = face / 2;
+    for (int u = 0; u < kStartCells; ++u) {
+      for (int v = 0; v < kStartCells; ++v) {
+        Eigen::Vector3d d;
+        d[k] = face % 2 ? -1.0 : 1.0;
+        d[(k + 1) % 3] = -1.0 + (2.0 * u + 1.0) / kStartCells;
+        d[(k + 2) % 3] = -1.0 + (2.0 * v + 1.0) / kStartCells;
+        start_[static_cast<std::size_t>((face * kStartCells + u) * kStartCells + v)] =
+            static_cast<std::uint32_t>(supportIndex(d));
+      }
+    }
   }
 }
 
 std::size_t ConvexPoints::climbStart(const Eigen::Vector3d& d) const {
-  // Each component to -1, 0 or 1: 0 when under half the largest one.
-  const double half = d.cwiseAbs().maxCoeff() / 2;
-  int k = 0, scale = 1;
-  for (int i = 0; i < 3; ++i, scale *= 3) {
-    k += scale * (d[i] > half ? 2 : d[i] < -half ? 0 : 1);
+  // The face of the cube of directions that d crosses (its largest component), then the cell
+  // there: the other two components over the largest, from -1 to 1, in kStartCells steps.
+  const double ax = std::abs(d.x()), ay = std::abs(d.y()), az = std::abs(d.z());
+  int k = 2;
+  double most = az;
+  if (ax >= ay && ax >= az) {
+    k = 0;
+    most = ax;
+  } else if (ay >= az) {
+    k = 1;
+    most = ay;
   }
-  return start_[static_cast<std::size_t>(k)];
+  // Zero, NaN, or so small or large that the scale below would overflow: any point starts
+  // (where the climb starts does not change what it finds on a hull).
+  if (!(most > 1e-300) || !(most < 1e300)) return start_[0];
+  // c + most is within [0, 2 most], so the cell's index is within [0, kStartCells]; a NaN
+  // component falls in cell 0.
+  const double over = kStartCells / (2 * most);
+  auto cell = [&](double c) {
+    const double at = (c + most) * over;
+    return at >= 1.0 ? std::min(static_cast<int>(at), kStartCells - 1) : 0;
+  };
+  const int face = 2 * k + (d[k] < 0 ? 1 : 0);
+  const int u = cell(d[(k + 1) % 3]), v = cell(d[(k + 2) % 3]);
+  return start_[static_cast<std::size_t>((face * kStartCells + u) * kStartCells + v)];
 }
 
 std::size_t ConvexPoints::climbSupport(const Eigen::Vector3d& d) const {

@@ -37,7 +37,7 @@ class ConvexPoints {
   Eigen::Vector3d point(std::size_t i) const { return {x_[i], y_[i], z_[i]}; }
   // A point of the (ungrown) hull that maximises d . p: one of the points.
   std::size_t supportIndex(const Eigen::Vector3d& d) const;
-  // From the support point of the nearest of 26 fixed directions, the neighbour that is highest
+  // From the support point of the nearest of 384 fixed directions, the neighbour that is highest
   // along d, as long as one is higher than the current point: a support point when the points
   // are a convex mesh's vertices, a local maximum otherwise. supportIndex when there are no
   // edges.
@@ -72,9 +72,11 @@ class ConvexPoints {
                              double& value) const;
   // Neighbours of point i: neighbours_[first_[i] .. first_[i + 1]).
   std::vector<std::uint32_t> first_, neighbours_;
-  // With edges: the support point of each of the 26 directions with components in {-1, 0, 1},
-  // where climbs start (climbStart).
-  std::array<std::uint32_t, 27> start_{};
+  // With edges: where climbs start (climbStart), by the cell of the cube of directions that
+  // the direction crosses (6 faces of kStartCells x kStartCells cells): the support point of the
+  // direction through the cell's centre, a few steps from the direction's own on a hull.
+  static constexpr int kStartCells = 8;
+  std::array<std::uint32_t, 6 * kStartCells * kStartCells> start_{};
   std::size_t climbStart(const Eigen::Vector3d& d) const;
   double radius_ = 0;
   bool exact_climb_ = false;
