@@ -283,6 +283,11 @@ void RobotModel::forwardKinematics(const double* q, std::size_t q_size, RobotDat
   }
   // Finite values can still give a non-finite pose (a huge limit or mimic multiplier along a
   // chain overflows); a collision query could call such a link free, so no caller gets one.
+  // x * 0 is 0 for a finite x and NaN otherwise: one sum over every pose tells, without a
+  // branch per value; the link is looked for only when it is NaN.
+  double zero = 0.0;
+  for (const Eigen::Isometry3d& X : data.X_WL) zero += (X.matrix().topRows<3>() * 0.0).sum();
+  if (zero == 0.0) return;
   for (std::size_t l = 0; l < data.X_WL.size(); ++l) {
     const Eigen::Isometry3d& X = data.X_WL[l];
     if (!X.translation().allFinite() || !X.linear().allFinite()) {
