@@ -7,7 +7,8 @@
 # Sections: differential motion octree builders translate primitive_contact planner_environment
 #           planner_selfcollision planner_clearance pointoctree self_pair_tables check_breakdown
 #           plan_split validity_checker broadphase world_updates refine motion_validator
-#           tradeoff python_check_many bench_set_mbm bench_set_rigid defaults hull_distance
+#           tradeoff python_check_many bench_set_mbm bench_set_instructions bench_set_rigid
+#           defaults hull_distance
 # Environment: OCTOMOTION_DIFFERENTIAL_STATES (default 1000000).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -20,7 +21,7 @@ out=$root/docs/benchmarks.md
 all=(differential motion octree builders translate primitive_contact planner_environment
   planner_selfcollision planner_clearance pointoctree self_pair_tables check_breakdown plan_split
   validity_checker broadphase world_updates refine motion_validator tradeoff python_check_many
-  bench_set_mbm bench_set_rigid defaults hull_distance)
+  bench_set_mbm bench_set_instructions bench_set_rigid defaults hull_distance)
 selected=("$@")
 ((${#selected[@]})) || selected=("${all[@]}")
 
@@ -67,6 +68,8 @@ add tradeoff "Speed/accuracy trade study, the arm scenes (tradeoff_bench; docs/t
   --resolutions 0.02,0.01,0.005 --refine-exact --no-fcl-octomap --runs 10 --planners RRTConnect:1
   --out-dir $build/tradeoff-results"
 add bench_set_mbm "Planning on the MotionBenchMaker Panda problems (octomotion bench-set)" \
+  octomotion ""
+add bench_set_instructions "Instructions per plan on the MotionBenchMaker Panda problems (callgrind)" \
   octomotion ""
 add bench_set_rigid "Planning rigid bodies, a generated building included (octomotion bench-set)" \
   octomotion ""
