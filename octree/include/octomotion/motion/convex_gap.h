@@ -37,10 +37,10 @@ class ConvexPoints {
   Eigen::Vector3d point(std::size_t i) const { return {x_[i], y_[i], z_[i]}; }
   // A point of the (ungrown) hull that maximises d . p: one of the points.
   std::size_t supportIndex(const Eigen::Vector3d& d) const;
-  // From the support point of the nearest of 384 fixed directions, the neighbour that is highest
-  // along d, as long as one is higher than the current point: a support point when the points
-  // are a convex mesh's vertices, a local maximum otherwise. supportIndex when there are no
-  // edges.
+  // From the support point of the cell of 384 fixed directions that d falls in (climbStart), the
+  // neighbour that is highest along d, as long as one is higher than the current point: a support
+  // point when the points are a convex mesh's vertices, a local maximum otherwise. supportIndex
+  // when there are no edges.
   std::size_t climbSupport(const Eigen::Vector3d& d) const;
   bool hasEdges() const { return !neighbours_.empty(); }
   // The hull of `points` grown by `radius`, kept as its boundary's vertices and edges
