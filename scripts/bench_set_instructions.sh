@@ -40,7 +40,7 @@ valgrind --tool=callgrind --toggle-collect='ompl::geometric::RRTConnect::solve*'
   echo "ones \`bench_set_mbm\` times (the same seed per problem, every one solved within 1 s)."
   echo
   python3 - "$tmp/cg" "$results/results.csv" <<'EOF'
-import csv, glob, os, re, statistics, sys
+import csv, glob, math, os, re, sys
 
 folder, table = sys.argv[1], sys.argv[2]
 rows = list(csv.DictReader(open(table)))
@@ -57,12 +57,15 @@ if len(counts) != len(rows):
 sets = {}
 for row, count in zip(rows, counts):
     sets.setdefault(row['set'], []).append((count, row))
+def quantile(values, p):
+    # Nearest rank, as bench-set's own summary takes its medians and 90th percentiles.
+    rank = math.ceil(p * len(values))
+    return values[min(len(values) - 1, max(rank, 1) - 1)]
 def line(name, items):
     values = sorted(c / 1e6 for c, _ in items)
-    p90 = values[min(len(values) - 1, int(0.9 * len(values)))]
     solved = sum(int(r['solved']) for _, r in items)
-    print(f'| {name} | {len(items)} | {solved}/{len(items)} | {statistics.median(values):.2f} | '
-          f'{p90:.2f} | {sum(values):.1f} |')
+    print(f'| {name} | {len(items)} | {solved}/{len(items)} | {quantile(values, 0.5):.2f} | '
+          f'{quantile(values, 0.9):.2f} | {sum(values):.1f} |')
 print('| set | problems | solved | median instructions / plan (M) | p90 (M) | total (M) |')
 print('|---|---|---|---|---|---|')
 for name in sorted(sets):
