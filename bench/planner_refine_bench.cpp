@@ -157,7 +157,8 @@ int run(int argc, char** argv) {
                   end.hull_apart_pairs - start.hull_apart_pairs,
                   end.certain_self_contacts - start.certain_self_contacts,
                   end.hull_apart_objects - start.hull_apart_objects,
-                  end.hull_apart_links - start.hull_apart_links};
+                  end.hull_apart_links - start.hull_apart_links,
+                  end.grid_clear_links - start.grid_clear_links};
       }
       const double mean = 1e6 * check_seconds / count;
       std::printf("  %-22s mean %8.3f us, FP %5.2f %%, missed %d, FCL / this %5.2f, build %.2f s\n",
@@ -171,14 +172,15 @@ int run(int argc, char** argv) {
         std::printf(
             "  %-22s per check: certain contacts %.3f, FCL links %.3f, FCL pairs %.3f, "
             "hull-apart pairs %.3f, certain self contacts %.3f, hull-apart objects %.3f, "
-            "hull-apart links %.3f\n",
+            "hull-apart links %.3f, grid-clear links %.3f\n",
             "", static_cast<double>(counts.certain_contacts) / count,
             static_cast<double>(counts.fcl_links) / count,
             static_cast<double>(counts.fcl_pairs) / count,
             static_cast<double>(counts.hull_apart_pairs) / count,
             static_cast<double>(counts.certain_self_contacts) / count,
             static_cast<double>(counts.hull_apart_objects) / count,
-            static_cast<double>(counts.hull_apart_links) / count);
+            static_cast<double>(counts.hull_apart_links) / count,
+            static_cast<double>(counts.grid_clear_links) / count);
       }
     }
   }

@@ -366,6 +366,10 @@ bool environmentOctreePass(const CollisionModelParts& parts, const RefineData& d
     // The answer is FCL's against the objects: a link whose hull is apart from theirs is free,
     // whatever its voxels meet.
     if (!sphereMeetsBox(t, X_WL, environment.box_W)) continue;
+    if (environment.linkClearByGrid(links.links[t.slot].voxels, X_WL)) {
+      ++r.counts.grid_clear_links;
+      continue;
+    }
     if (linkApartFromObjects(data, r, scratch.robot, t.link)) {
       ++r.counts.hull_apart_links;
       continue;

@@ -96,6 +96,16 @@ class EnvironmentModel {
     }
     return false;
   }
+  // The link's bounding sphere is farther than the clearance grid's bound from every black
+  // voxel, so its geometry (within its black voxels, within the sphere) meets no object: one
+  // lookup, cheaper than any test of its hull or voxels. False without a grid.
+  bool linkClearByGrid(const LinkVoxels& v, const Eigen::Isometry3d& X_WL) const {
+    if (!clearance) return false;
+    const WorldGrid& world = tree.grid();
+    const Eigen::Vector3d g = world.toGrid(X_WL * v.center_L);
+    const double c[3] = {g.x(), g.y(), g.z()};
+    return clearance->clearance(c) * world.voxelSize() - v.radius - 1e-6 > 0;
+  }
   // For a link whose bounding sphere reaches the environment's box (sphereMeetsBox): false
   // when its oriented box meets neither the environment's box nor (kObjectBoxes) any object's
   // box, so it cannot meet an environment voxel.
