@@ -96,9 +96,10 @@ class EnvironmentModel {
     }
     return false;
   }
-  // The link's bounding sphere is farther than the clearance grid's bound from every black
-  // voxel, so its geometry (within its black voxels, within the sphere) meets no object: one
-  // lookup, cheaper than any test of its hull or voxels. False without a grid.
+  // The clearance grid's bound at the centre of the link's bounding sphere exceeds its radius:
+  // the sphere, which holds the link's black voxels and so its geometry, meets no black voxel
+  // and no object. One lookup, cheaper than any test of its hull or voxels. False without a
+  // grid, and outside the universe (the grid's bound is 0 there).
   bool linkClearByGrid(const LinkVoxels& v, const Eigen::Isometry3d& X_WL) const {
     if (!clearance) return false;
     const WorldGrid& world = tree.grid();

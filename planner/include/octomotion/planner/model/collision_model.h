@@ -320,8 +320,8 @@ struct RefineCounts {
   // Links cleared of the environment by their hull apart from every object's hull that could
   // reach them, before their voxels (skipped for voxel objects, which have no hull).
   std::uint64_t hull_apart_links = 0;
-  // Links cleared of the environment by the clearance grid: their bounding sphere farther than
-  // the grid's lower bound from every black voxel, before their hull or voxels.
+  // Links cleared of the environment by the clearance grid (its bound at their bounding
+  // sphere's centre above the sphere's radius), before their hull or voxels.
   std::uint64_t grid_clear_links = 0;
 };
 
