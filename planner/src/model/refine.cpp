@@ -374,11 +374,14 @@ bool environmentOctreePass(const CollisionModelParts& parts, const RefineData& d
       ++r.counts.hull_apart_links;
       continue;
     }
+    // A link whose hull meets an object's is mostly in contact: a certain contact settles the
+    // state without the voxel query, which costs more in contact than out of it. A certain
+    // contact is a real one, so the voxels (conservative) would have met too.
+    if (certainLinkContact(data, r, scratch.robot, t.link)) {
+      ++r.counts.certain_contacts;
+      return true;
+    }
     if (environment.linkHits(t, links.links[t.slot].voxels, X_WL, path, scratch.fused)) {
-      if (certainLinkContact(data, r, scratch.robot, t.link)) {
-        ++r.counts.certain_contacts;
-        return true;
-      }
       r.uncertain_links.push_back(t.link);
     }
   }
