@@ -10,7 +10,9 @@
 #include <array>
 #include <cstddef>
 #include <limits>
+#include <utility>
 #include <variant>
+#include <vector>
 
 #include "internal/refine.h"
 #include "octomotion/planner/model/collision_backend.h"
@@ -86,13 +88,21 @@ double refineLinkDistance(const RefineData& data, RefineScratch& r, const RobotD
     }
   };
   const std::size_t objects = data.objects.size();
+  // Nearest boxes first: the nearest object's distance lowers the running best early, and the
+  // farther objects then stop at their box's bound without GJK.
+  thread_local std::vector<std::pair<double, std::size_t>> order;
+  order.clear();
   for (std::size_t i = 0; i < objects; ++i) {
+    if (data.objects[i].shapes.empty()) continue;
+    order.emplace_back(
+        hull_L.empty() ? 0.0 : distanceToBox(data.objects[i].box_W, centre_W) - reach, i);
+  }
+  std::sort(order.begin(), order.end());
+  for (const auto& [boxed, i] : order) {
     const RefineObject& object = data.objects[i];
-    if (object.shapes.empty()) continue;
     double gap = 0.0;  // the hulls' bound, 0 when not measured
     Eigen::Vector3d* direction_O = nullptr;
     if (!hull_L.empty()) {
-      const double boxed = distanceToBox(object.box_W, centre_W) - reach;
       if (boxed >= best) {
         if (nearest) record(object, boxed, 0.0, nullptr);
         continue;
