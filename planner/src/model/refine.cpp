@@ -374,9 +374,10 @@ bool environmentOctreePass(const CollisionModelParts& parts, const RefineData& d
       ++r.counts.hull_apart_links;
       continue;
     }
-    // A link whose hull meets an object's is mostly in contact: a certain contact settles the
-    // state without the voxel query, which costs more in contact than out of it. A certain
-    // contact is a real one, so the voxels (conservative) would have met too.
+    // A link the hulls leave (its hull meets an object's, or it could reach a voxel object) is
+    // mostly in contact: a certain contact settles the state without the voxel query, which
+    // costs more in contact than out of it. A certain contact is a real one, so the voxels
+    // (conservative) would have met too.
     if (certainLinkContact(data, r, scratch.robot, t.link)) {
       ++r.counts.certain_contacts;
       return true;
